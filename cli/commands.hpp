@@ -1,0 +1,20 @@
+#pragma once
+/// \file
+/// Subcommands of the stcweave program. Each `add_*_command` registers its options on
+/// `app` and returns the function to run when the subcommand is chosen; that function
+/// returns the exit code and lets library exceptions escape (main maps them to codes).
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace stcweave::cli {
+
+/// Exit codes, documented in README.md.
+enum ExitCode : int { kSuccess = 0, kUsage = 1, kInvalidInput = 2, kInternal = 3 };
+
+using Action = std::function<int()>;
+
+Action add_loops_command(CLI::App& app);
+Action add_sheets_command(CLI::App& app);
+
+}  // namespace stcweave::cli

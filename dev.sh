@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# stcweave developer entry point.
+#   ./dev.sh run   install what is missing, build (Release, in build/), mesh the bundled input
+#   ./dev.sh test  install what is missing, build, run the whole test suite (ctest)
+#   ./dev.sh build install what is missing, build
+# Idempotent: a machine that already has everything only builds.
+set -euo pipefail
+cd "$(dirname "$0")"
+
+PACKAGES=(cmake g++ make pkg-config libboost-graph-dev libeigen3-dev nlohmann-json3-dev
+  libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev)
+BUILD_DIR=${STCWEAVE_BUILD_DIR:-build}
+JOBS=${STCWEAVE_JOBS:-$(nproc 2>/dev/null || echo 2)}
+
+install_missing() {
+  local missing=()
+  for p in "${PACKAGES[@]}"; do
+    if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+      missing+=("$p")
+    fi
+  done
+  if [ ${#missing[@]} -eq 0 ]; then return 0; fi
+  echo "dev.sh: installing missing Debian packages: ${missing[*]}"
+  local sudo=""
+  if [ "$(id -u)" -ne 0 ]; then
+    if command -v sudo >/dev/null 2>&1; then sudo="sudo"; else
+      echo "dev.sh: not root and no sudo: install these packages by hand: ${missing[*]}" >&2
+      exit 1
+    fi
+  fi
+  $sudo env DEBIAN_FRONTEND=noninteractive apt-get update -qq
+  $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+build() {
+  install_missing
+  if [ ! -f "$BUILD_DIR/CMakeCache.txt" ]; then
+    cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release
+  fi
+  cmake --build "$BUILD_DIR" -j "$JOBS"
+}
+
+cmd=${1:-}
+case "$cmd" in
+  build)
+    build ;;
+  run)
+    build
+    shift || true
+    exec "$BUILD_DIR/bin/stcweave" demo "$@" ;;
+  test)
+    build
+    cd "$BUILD_DIR"
+    ctest --output-on-failure -j "$JOBS" ;;
+  *)
+    echo "usage: ./dev.sh run|test|build" >&2
+    exit 1 ;;
+esac

@@ -1,0 +1,1 @@
+// PLACEHOLDER: being written (must be replaced before commit)

@@ -1,0 +1,101 @@
+#include "support/shapes.hpp"
+
+#include <algorithm>
+#include <map>
+
+namespace stcweave::test {
+
+primal::HexMesh box_hexes(int a, int b, int c, double sx, double sy, double sz) {
+  primal::HexMesh m;
+  const auto id = [&](int i, int j, int k) { return NodeId(i + (a + 1) * (j + (b + 1) * k)); };
+  const auto n = static_cast<Eigen::Index>((a + 1) * (b + 1) * (c + 1));
+  m.points.resize(n, 3);
+  for (int k = 0; k <= c; ++k)
+    for (int j = 0; j <= b; ++j)
+      for (int i = 0; i <= a; ++i) m.points.row(id(i, j, k).value()) << i * sx, j * sy, k * sz;
+  m.complex.num_nodes = static_cast<std::size_t>(n);
+  for (int k = 0; k < c; ++k)
+    for (int j = 0; j < b; ++j)
+      for (int i = 0; i < a; ++i)
+        m.complex.hexes.push_back({id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k),
+                                   id(i, j + 1, k), id(i, j, k + 1), id(i + 1, j, k + 1),
+                                   id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)});
+  return m;
+}
+
+primal::SurfaceMesh boundary_of(const primal::HexMesh& mesh) {
+  std::map<std::array<NodeId, 4>, std::pair<int, stc::Quad>> faces;
+  for (const auto& h : mesh.complex.hexes) {
+    for (int f = 0; f < 6; ++f) {
+      const stc::Quad q = stc::hex_face(h, f);
+      auto key = q;
+      std::sort(key.begin(), key.end());
+      auto& entry = faces[key];
+      entry.first += 1;
+      entry.second = q;
+    }
+  }
+  std::vector<stc::Quad> quads;
+  for (const auto& [key, entry] : faces)
+    if (entry.first == 1) quads.push_back(entry.second);
+  std::map<NodeId, NodeId> renumber;
+  for (const auto& q : quads)
+    for (NodeId v : q) renumber.emplace(v, NodeId::invalid());
+  int next = 0;
+  for (auto& [old, now] : renumber) now = NodeId(next++);
+  primal::SurfaceMesh s;
+  s.points.resize(next, 3);
+  for (const auto& [old, now] : renumber) s.points.row(now.value()) = mesh.points.row(old.value());
+  for (auto q : quads) {
+    for (auto& v : q) v = renumber.at(v);
+    s.surface.quads.push_back(q);
+  }
+  s.surface.num_nodes = static_cast<std::size_t>(next);
+  return s;
+}
+
+primal::SurfaceMesh box_surface(int a, int b, int c, double sx, double sy, double sz) {
+  return boundary_of(box_hexes(a, b, c, sx, sy, sz));
+}
+
+primal::SurfaceMesh rhombic_dodecahedron() {
+  primal::SurfaceMesh s;
+  // nodes 0..7: cube corners (+-1,+-1,+-1); 8..13: (+-2,0,0), (0,+-2,0), (0,0,+-2)
+  s.points.resize(14, 3);
+  for (int i = 0; i < 8; ++i)
+    s.points.row(i) << ((i & 1) ? 1 : -1), ((i & 2) ? 1 : -1), ((i & 4) ? 1 : -1);
+  s.points.row(8) << 2, 0, 0;
+  s.points.row(9) << -2, 0, 0;
+  s.points.row(10) << 0, 2, 0;
+  s.points.row(11) << 0, -2, 0;
+  s.points.row(12) << 0, 0, 2;
+  s.points.row(13) << 0, 0, -2;
+  // one rhombus per cube edge: its two corners and the two axis points adjacent to both
+  for (int u = 0; u < 8; ++u) {
+    for (int bit = 1; bit < 8; bit <<= 1) {
+      const int v = u | bit;
+      if (v == u) continue;
+      std::vector<int> axis;
+      for (int p = 8; p < 14; ++p) {
+        const Eigen::RowVector3d ap = s.points.row(p);
+        if ((ap - s.points.row(u)).squaredNorm() < 3.5 && (ap - s.points.row(v)).squaredNorm() < 3.5)
+          axis.push_back(p);
+      }
+      stc::Quad q{NodeId(u), NodeId(axis[0]), NodeId(v), NodeId(axis[1])};
+      const Eigen::RowVector3d p0 = s.points.row(u), p1 = s.points.row(axis[0]),
+                               p2 = s.points.row(v);
+      const Eigen::RowVector3d normal = (p1 - p0).cross(p2 - p1);
+      if (normal.dot(p0 + p2) < 0) q = stc::reversed(q);
+      s.surface.quads.push_back(q);
+    }
+  }
+  s.surface.num_nodes = 14;
+  return s;
+}
+
+primal::SurfaceMesh reversed_surface(primal::SurfaceMesh mesh) {
+  for (auto& q : mesh.surface.quads) q = stc::reversed(q);
+  return mesh;
+}
+
+}  // namespace stcweave::test

@@ -1,0 +1,30 @@
+#pragma once
+/// \file
+/// Test shapes generated in code: structured boxes (surface and hex mesh), the seed's
+/// Fig. 5 bar, the rhombic dodecahedron. Surfaces are oriented outward.
+
+#include "stcweave/primal/mesh.hpp"
+
+namespace stcweave::test {
+
+/// The a x b x c structured hex mesh of the box [0,a*sx] x [0,b*sy] x [0,c*sz], hexes
+/// positively oriented (VTK order). Node (i,j,k) has id i + (a+1)(j + (b+1)k).
+primal::HexMesh box_hexes(int a, int b, int c, double sx = 1.0, double sy = 1.0,
+                          double sz = 1.0);
+
+/// The boundary of `box_hexes(a,b,c)`: 2(ab+bc+ca) quads, outward, nodes renumbered
+/// 0..n-1 in increasing order of their hex-mesh ids.
+primal::SurfaceMesh box_surface(int a, int b, int c, double sx = 1.0, double sy = 1.0,
+                                double sz = 1.0);
+
+/// The boundary quads of a hex mesh (faces used by one hex, outward), nodes renumbered
+/// compactly. Independent of the library's own extraction, for cross-checks.
+primal::SurfaceMesh boundary_of(const primal::HexMesh& mesh);
+
+/// The rhombic dodecahedron: 12 rhombi, 14 nodes, outward.
+primal::SurfaceMesh rhombic_dodecahedron();
+
+/// A surface with every quad reversed (inward).
+primal::SurfaceMesh reversed_surface(primal::SurfaceMesh mesh);
+
+}  // namespace stcweave::test
