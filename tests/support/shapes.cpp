@@ -1,5 +1,6 @@
 #include "support/shapes.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <map>
 

@@ -1,0 +1,178 @@
+#include "stcweave/weave/front.hpp"
+
+#include <algorithm>
+#include <unordered_map>
+
+#include "stcweave/stc/errors.hpp"
+
+namespace stcweave::weave {
+
+std::string FaceOwner::str() const {
+  if (is_input()) return QuadId(id).str();
+  return HexId(id).str() + "." + std::to_string(local_face);
+}
+
+Front::Front(const stc::QuadSurface& surface) : num_input_nodes_(surface.num_nodes) {
+  parent_.resize(surface.num_nodes);
+  for (std::size_t i = 0; i < parent_.size(); ++i) parent_[i] = NodeId(i);
+  incident_.resize(surface.num_nodes);
+  faces_.reserve(surface.quads.size() * 2);
+  for (std::size_t q = 0; q < surface.quads.size(); ++q) {
+    const stc::Quad& quad = surface.quads[q];
+    for (int i = 0; i < 4; ++i) {
+      const NodeId n = quad[static_cast<std::size_t>(i)];
+      if (!n.is_valid() || n.index() >= surface.num_nodes)
+        throw InvalidInput("weave: " + QuadId(q).str() + " uses node " + n.str() +
+                           " out of range (surface has " + std::to_string(surface.num_nodes) +
+                           " nodes)");
+      for (int j = 0; j < i; ++j)
+        if (quad[static_cast<std::size_t>(j)] == n)
+          throw InvalidInput("weave: " + QuadId(q).str() + " repeats node " + n.str() +
+                             " (degenerate quad): remove or repair it");
+    }
+    add_face(quad, FaceOwner{FaceOwner::Kind::Input, static_cast<std::int32_t>(q), -1}, 0);
+  }
+}
+
+NodeId Front::find(NodeId n) const {
+  auto& p = parent_;
+  while (p[n.index()] != n) {
+    p[n.index()] = p[p[n.index()].index()];
+    n = p[n.index()];
+  }
+  return n;
+}
+
+NodeId Front::new_node() {
+  const NodeId n(parent_.size());
+  parent_.push_back(n);
+  incident_.emplace_back();
+  return n;
+}
+
+void Front::merge_nodes(NodeId keep, NodeId gone) {
+  auto& moved = incident_[gone.index()];
+  for (FaceIndex f : moved) {
+    for (NodeId& n : faces_[static_cast<std::size_t>(f)].nodes)
+      if (n == gone) n = keep;
+  }
+  auto& kept = incident_[keep.index()];
+  kept.insert(kept.end(), moved.begin(), moved.end());
+  moved.clear();
+  moved.shrink_to_fit();
+  parent_[gone.index()] = keep;
+}
+
+FaceIndex Front::add_face(const stc::Quad& nodes, FaceOwner owner, std::int32_t depth) {
+  FaceIndex f;
+  if (!free_.empty()) {
+    f = free_.back();
+    free_.pop_back();
+  } else {
+    f = static_cast<FaceIndex>(faces_.size());
+    faces_.emplace_back();
+  }
+  FrontFace& face = faces_[static_cast<std::size_t>(f)];
+  face.nodes = nodes;
+  face.owner = owner;
+  face.depth = depth;
+  face.alive = true;
+  for (NodeId n : nodes) incident_[n.index()].push_back(f);
+  ++alive_;
+  return f;
+}
+
+void Front::remove_face(FaceIndex f) {
+  FrontFace& face = faces_[static_cast<std::size_t>(f)];
+  for (NodeId n : face.nodes) {
+    auto& list = incident_[n.index()];
+    const auto it = std::find(list.begin(), list.end(), f);
+    if (it != list.end()) list.erase(it);
+  }
+  face.alive = false;
+  free_.push_back(f);
+  --alive_;
+}
+
+int Front::corner_of(FaceIndex f, NodeId v) const {
+  const auto& nodes = face(f).nodes;
+  for (int i = 0; i < 4; ++i)
+    if (nodes[static_cast<std::size_t>(i)] == v) return i;
+  return -1;
+}
+
+FaceSide Front::find_edge(NodeId from, NodeId to) const {
+  for (FaceIndex f : incident_[from.index()]) {
+    const auto& n = face(f).nodes;
+    for (int i = 0; i < 4; ++i)
+      if (n[static_cast<std::size_t>(i)] == from && n[static_cast<std::size_t>((i + 1) % 4)] == to)
+        return {f, i};
+  }
+  return {};
+}
+
+FaceSide Front::across(FaceIndex f, int side) const {
+  const auto& n = face(f).nodes;
+  return find_edge(n[static_cast<std::size_t>((side + 1) % 4)], n[static_cast<std::size_t>(side)]);
+}
+
+std::optional<std::string> Front::check_invariants() const {
+  struct PairHash {
+    std::size_t operator()(const std::pair<std::int32_t, std::int32_t>& p) const noexcept {
+      return std::hash<std::int64_t>()((static_cast<std::int64_t>(p.first) << 32) ^
+                                       static_cast<std::uint32_t>(p.second));
+    }
+  };
+  std::unordered_map<std::pair<std::int32_t, std::int32_t>, FaceIndex, PairHash> directed;
+  std::size_t alive = 0;
+  for (std::size_t fi = 0; fi < faces_.size(); ++fi) {
+    const FrontFace& face = faces_[fi];
+    if (!face.alive) continue;
+    ++alive;
+    const auto f = static_cast<FaceIndex>(fi);
+    for (int i = 0; i < 4; ++i) {
+      const NodeId a = face.nodes[static_cast<std::size_t>(i)];
+      const NodeId b = face.nodes[static_cast<std::size_t>((i + 1) % 4)];
+      if (find(a) != a)
+        return "front face " + std::to_string(f) + " uses merged node " + a.str();
+      for (int j = i + 1; j < 4; ++j)
+        if (face.nodes[static_cast<std::size_t>(j)] == a)
+          return "front face " + std::to_string(f) + " repeats node " + a.str();
+      const auto& list = incident_[a.index()];
+      if (std::count(list.begin(), list.end(), f) != 1)
+        return "incidence list of " + a.str() + " misses front face " + std::to_string(f);
+      const auto [it, fresh] = directed.emplace(std::make_pair(a.value(), b.value()), f);
+      if (!fresh)
+        return "directed edge " + a.str() + "->" + b.str() + " in front faces " +
+               std::to_string(it->second) + " and " + std::to_string(f) + " (pinched front)";
+    }
+  }
+  if (alive != alive_) return "alive face count out of date";
+  for (const auto& [edge, f] : directed)
+    if (!directed.contains({edge.second, edge.first}))
+      return "edge " + NodeId(edge.first).str() + "-" + NodeId(edge.second).str() +
+             " of front face " + std::to_string(f) + " is open";
+  // every vertex link is one cycle
+  for (std::size_t v = 0; v < incident_.size(); ++v) {
+    const auto& list = incident_[v];
+    if (list.empty()) continue;
+    for (FaceIndex f : list)
+      if (!is_alive(f)) return "incidence list of n" + std::to_string(v) + " holds a dead face";
+    // walk the rotation: from (f, corner i) go across side i to (g, j) holding v at j+1
+    const NodeId node(v);
+    FaceIndex f = list.front();
+    std::size_t steps = 0;
+    do {
+      const int i = corner_of(f, node);
+      const FaceSide next = across(f, i);
+      if (next.face == kNoFace) return "rotation around " + node.str() + " is broken";
+      f = next.face;
+      ++steps;
+    } while (f != list.front() && steps <= list.size());
+    if (steps != list.size())
+      return "faces around " + node.str() + " do not form one cycle (pinched at a node)";
+  }
+  return std::nullopt;
+}
+
+}  // namespace stcweave::weave

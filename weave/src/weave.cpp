@@ -1,0 +1,775 @@
+/// Reliable Whisker Weaving on the front (DESIGN.md "Weaving, operationally").
+///
+/// The algorithm, and why it ends with a closed complex:
+/// - The front starts as the input surface and every rule replaces front faces by faces of a
+///   new hex (cross, blind chord formation) or glues two front faces that met (seam); the
+///   front stays a closed oriented quad surface (checked after every rule with `check`).
+/// - A loop shrink pushes one loop across the region on one side: at each step the side
+///   node with the fewest front faces is collapsed (valence 3: cross; valence >= 4: blind
+///   chord formation lowers it by one), seams run to a fixpoint after every rule, and the
+///   loop is done when none of its transversal edges is left on the front (seed sect. 2.2,
+///   Fig. 3-4). Each shrink builds one sheet of hexes.
+/// - Loops are chosen by increasing topological weight (nodes strictly on the shrinking side
+///   plus nodes on the strip); when a shrink is blocked everywhere, the next (loop, side) is
+///   tried, and the weave fails with the reasons only when all are blocked.
+/// The weave ends when the front is empty: every hex face is then glued to another hex face
+/// or is an input quad.
+
+#include "stcweave/weave/weave.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <span>
+
+#include "stcweave/stc/errors.hpp"
+#include "stcweave/weave/front.hpp"
+
+namespace stcweave::weave {
+
+std::string to_string(RuleSet rules) {
+  switch (rules) {
+    case RuleSet::Reliable:
+      return "reliable";
+  }
+  return "?";
+}
+
+RuleSet rule_set_from_name(const std::string& name) {
+  if (name == "reliable") return RuleSet::Reliable;
+  throw InvalidInput("unknown rule set '" + name + "': valid names are: reliable");
+}
+
+namespace {
+
+/// Faces opposite each other in a hex (kHexFaces order).
+constexpr std::array<int, 6> kOppositeFace = {1, 0, 4, 5, 2, 3};
+
+/// A loop passage: the loop enters front face `face` through its side `entry`.
+struct Passage {
+  FaceIndex face = kNoFace;
+  int entry = 0;
+};
+
+/// A directed transversal edge of a strip: (node on the shrinking side, other node).
+struct Transversal {
+  NodeId side_node;
+  NodeId other;
+};
+
+stc::Quad rotated(const stc::Quad& q, int start) {
+  return {q[static_cast<std::size_t>(start % 4)], q[static_cast<std::size_t>((start + 1) % 4)],
+          q[static_cast<std::size_t>((start + 2) % 4)], q[static_cast<std::size_t>((start + 3) % 4)]};
+}
+
+std::array<NodeId, 4> sorted_nodes(stc::Quad q) {
+  std::sort(q.begin(), q.end());
+  return q;
+}
+
+NodeId at(const stc::Quad& q, int i) { return q[static_cast<std::size_t>(((i % 4) + 4) % 4)]; }
+
+class Weaver {
+ public:
+  Weaver(const stc::QuadSurface& surface, const WeaveOptions& options)
+      : front_(surface), options_(options) {
+    hexes_at_.resize(front_.num_nodes());
+    node_mark_.assign(front_.num_nodes(), 0);
+    const double q = static_cast<double>(surface.quads.size());
+    max_rules_ = options.max_rules != 0
+                     ? options.max_rules
+                     : static_cast<std::size_t>(64.0 * q * std::sqrt(q)) + 100000;
+    if (auto err = front_.check_invariants())
+      throw InvalidInput("the surface is not a closed oriented manifold quad surface: " + *err);
+  }
+
+  WeaveResult run();
+
+ private:
+  // ---- bookkeeping ----
+  NodeId new_node() {
+    const NodeId n = front_.new_node();
+    hexes_at_.emplace_back();
+    node_mark_.push_back(0);
+    return n;
+  }
+  void link(const FaceOwner& a, const FaceOwner& b);
+  HexId make_hex(const stc::Hex& hex, std::span<const FaceIndex> used, const char* rule,
+                 NodeId at_node);
+  void after_rule(const char* rule, NodeId node, std::vector<std::string> faces, HexId hex);
+  void push_nodes_of(FaceIndex f) {
+    for (NodeId n : front_.face(f).nodes) seam_work_.push_back(n);
+  }
+  [[nodiscard]] std::size_t common_nodes(HexId a, HexId b, NodeId gone, NodeId keep) const;
+  [[nodiscard]] bool share_hex(NodeId x, NodeId y) const;
+
+  // ---- rules ----
+  bool try_seam(NodeId v, std::string* why);
+  bool try_cross(NodeId v, std::string* why);
+  bool try_blind_chord(NodeId v, const std::vector<Passage>& strip, std::string* why);
+  void seam_fixpoint();
+
+  // ---- loops ----
+  std::vector<Passage> trace_loop(FaceIndex f, int entry) const;
+  std::vector<std::vector<Passage>> all_loops() const;
+  TraceCandidate weigh(const std::vector<Passage>& strip, int side);
+  std::vector<Transversal> transversals(const std::vector<Passage>& strip, int side) const;
+  std::vector<Passage> retrace(const std::vector<Transversal>& edges) const;
+  /// Shrinks the loop to side `side`. Returns std::nullopt on success, else why it failed.
+  std::optional<std::string> shrink(const std::vector<Passage>& strip, int side);
+
+  std::uint32_t next_stamp() {
+    if (++stamp_ == 0) {
+      std::fill(node_mark_.begin(), node_mark_.end(), 0);
+      stamp_ = 1;
+    }
+    return stamp_;
+  }
+
+  Front front_;
+  const WeaveOptions& options_;
+  std::vector<stc::Hex> hexes_;
+  std::vector<std::vector<HexId>> hexes_at_;  // canonical node -> hexes using it
+  std::vector<std::array<DualLink, 6>> dual_;
+  std::vector<std::int32_t> hex_shrink_;
+  std::vector<std::string> hex_rule_;
+  WeaveStats stats_;
+  std::vector<TraceEvent> trace_;
+  std::vector<NodeId> seam_work_;
+  std::vector<NodeId> blocked_seams_;
+  std::int32_t shrink_index_ = -1;
+  std::size_t rules_applied_ = 0;
+  std::size_t max_rules_ = 0;
+  std::vector<std::uint32_t> node_mark_;
+  std::uint32_t stamp_ = 0;
+  std::vector<std::uint32_t> face_mark_;
+  std::uint32_t face_stamp_ = 0;
+};
+
+// ---------------------------------------------------------------------------------------
+// bookkeeping
+
+void Weaver::link(const FaceOwner& a, const FaceOwner& b) {
+  const auto set = [this](const FaceOwner& self, const FaceOwner& other) {
+    if (!self.is_hex()) return;
+    DualLink& l = dual_[static_cast<std::size_t>(self.id)][static_cast<std::size_t>(self.local_face)];
+    l.is_boundary = other.is_input();
+    l.id = other.id;
+    l.local_face = other.local_face;
+  };
+  set(a, b);
+  set(b, a);
+}
+
+HexId Weaver::make_hex(const stc::Hex& hex, std::span<const FaceIndex> used, const char* rule,
+                       NodeId at_node) {
+  const HexId id(hexes_.size());
+  hexes_.push_back(hex);
+  dual_.emplace_back();
+  hex_shrink_.push_back(shrink_index_);
+  hex_rule_.emplace_back(rule);
+  std::array<FaceIndex, 6> face_used{};
+  face_used.fill(kNoFace);
+  std::vector<std::string> whiskers;
+  for (FaceIndex f : used) {
+    const auto key = sorted_nodes(front_.face(f).nodes);
+    bool matched = false;
+    for (int lf = 0; lf < 6; ++lf) {
+      if (sorted_nodes(stc::hex_face(hex, lf)) == key) {
+        face_used[static_cast<std::size_t>(lf)] = f;
+        matched = true;
+        break;
+      }
+    }
+    if (!matched) throw InternalError("weave: a used front face is not a face of the new hex");
+    whiskers.push_back(front_.face(f).owner.str());
+  }
+  for (int lf = 0; lf < 6; ++lf) {
+    const FaceIndex f = face_used[static_cast<std::size_t>(lf)];
+    if (f == kNoFace) continue;
+    link(FaceOwner{FaceOwner::Kind::Hex, id.value(), static_cast<std::int8_t>(lf)},
+         front_.face(f).owner);
+  }
+  // Remove the used faces, then add the new ones reversed (outward from the region left).
+  std::array<std::int32_t, 6> depth_of{};
+  for (int lf = 0; lf < 6; ++lf) {
+    const FaceIndex opposite = face_used[static_cast<std::size_t>(kOppositeFace[static_cast<std::size_t>(lf)])];
+    depth_of[static_cast<std::size_t>(lf)] =
+        (opposite != kNoFace && front_.face(opposite).depth >= 0) ? front_.face(opposite).depth + 1
+                                                                  : -1;
+  }
+  for (FaceIndex f : used) {
+    push_nodes_of(f);
+    front_.remove_face(f);
+  }
+  for (int lf = 0; lf < 6; ++lf) {
+    if (face_used[static_cast<std::size_t>(lf)] != kNoFace) continue;
+    const FaceIndex f = front_.add_face(stc::reversed(stc::hex_face(hex, lf)),
+                                        FaceOwner{FaceOwner::Kind::Hex, id.value(), static_cast<std::int8_t>(lf)},
+                                        depth_of[static_cast<std::size_t>(lf)]);
+    push_nodes_of(f);
+  }
+  for (NodeId n : hex) hexes_at_[n.index()].push_back(id);
+  after_rule(rule, at_node, std::move(whiskers), id);
+  return id;
+}
+
+void Weaver::after_rule(const char* rule, NodeId node, std::vector<std::string> faces, HexId hex) {
+  ++rules_applied_;
+  if (options_.trace) {
+    TraceEvent e;
+    e.kind = TraceEvent::Kind::Rule;
+    e.step = rules_applied_;
+    e.rule = rule;
+    e.node = node;
+    e.faces = std::move(faces);
+    e.hex = hex;
+    e.shrink = shrink_index_;
+    trace_.push_back(std::move(e));
+  }
+  if (options_.check) {
+    if (auto err = front_.check_invariants())
+      throw InternalError("weave: front invariant broken after " + std::string(rule) + " at " +
+                          node.str() + " (rule " + std::to_string(rules_applied_) + "): " + *err);
+  }
+  if (options_.progress && options_.progress_every > 0 &&
+      rules_applied_ % options_.progress_every == 0)
+    options_.progress(WeaveProgress{front_.num_faces(), hexes_.size(), stats_.shrinks});
+  if (rules_applied_ > max_rules_)
+    throw WeaveError("weave: gave up after " + std::to_string(max_rules_) +
+                     " rule applications with " + std::to_string(front_.num_faces()) +
+                     " front faces left (raise the limit with max_rules if the input is large)");
+}
+
+std::size_t Weaver::common_nodes(HexId a, HexId b, NodeId gone, NodeId keep) const {
+  std::array<NodeId, 8> na{}, nb{};
+  for (int i = 0; i < 8; ++i) {
+    NodeId x = front_.find(hexes_[a.index()][static_cast<std::size_t>(i)]);
+    NodeId y = front_.find(hexes_[b.index()][static_cast<std::size_t>(i)]);
+    na[static_cast<std::size_t>(i)] = x == gone ? keep : x;
+    nb[static_cast<std::size_t>(i)] = y == gone ? keep : y;
+  }
+  std::sort(na.begin(), na.end());
+  std::sort(nb.begin(), nb.end());
+  std::size_t count = 0;
+  std::size_t i = 0, j = 0;
+  while (i < 8 && j < 8) {
+    if (na[i] == nb[j]) {
+      ++count;
+      ++i;
+      ++j;
+    } else if (na[i] < nb[j]) {
+      ++i;
+    } else {
+      ++j;
+    }
+  }
+  return count;
+}
+
+bool Weaver::share_hex(NodeId x, NodeId y) const {
+  const auto& hx = hexes_at_[x.index()];
+  const auto& hy = hexes_at_[y.index()];
+  for (HexId h : hx)
+    if (std::find(hy.begin(), hy.end(), h) != hy.end()) return true;
+  return false;
+}
+
+// ---------------------------------------------------------------------------------------
+// rules
+
+/// Seam at a valence-2 node v: faces A = (v, a, x, b) and B = (v, b, y, a) share two edges;
+/// both leave the front, x and y merge, and every other pair of faces the merge makes
+/// coincident is glued in the same step. \cite seed sect. 2.2 (Fig. 2), RWW.
+bool Weaver::try_seam(NodeId v, std::string* why) {
+  const auto& at_v = front_.faces_at(v);
+  if (at_v.size() != 2) {
+    *why = "valence " + std::to_string(at_v.size());
+    return false;
+  }
+  const FaceIndex fa = at_v[0];
+  const FaceIndex fb = at_v[1];
+  const stc::Quad A = rotated(front_.face(fa).nodes, front_.corner_of(fa, v));
+  const stc::Quad B = rotated(front_.face(fb).nodes, front_.corner_of(fb, v));
+  const NodeId a = A[1], x = A[2], b = A[3];
+  if (B[1] != b || B[3] != a) {
+    *why = "its two faces do not share both edges";
+    return false;
+  }
+  const NodeId y = B[2];
+  const FaceOwner oa = front_.face(fa).owner;
+  const FaceOwner ob = front_.face(fb).owner;
+  if (oa.is_input() && ob.is_input()) {
+    *why = "it would glue two input quads " + oa.str() + " and " + ob.str();
+    return false;
+  }
+  if (oa.is_hex() && ob.is_hex() && oa.id == ob.id) {
+    *why = "it would glue two faces of " + HexId(oa.id).str();
+    return false;
+  }
+  const NodeId keep = (x == y) ? x : (front_.is_input_node(y) || (!front_.is_input_node(x) && y < x)) ? y : x;
+  const NodeId gone = (keep == x) ? y : x;
+  if (x != y) {
+    if (front_.is_input_node(x) && front_.is_input_node(y)) {
+      *why = "it would merge two input nodes " + x.str() + " and " + y.str();
+      return false;
+    }
+    if (share_hex(x, y)) {
+      *why = "it would merge " + x.str() + " and " + y.str() + ", two nodes of one hex";
+      return false;
+    }
+    for (FaceIndex f : front_.faces_at(x)) {
+      if (front_.corner_of(f, y) >= 0) {
+        *why = "it would merge " + x.str() + " and " + y.str() + ", two nodes of one front face";
+        return false;
+      }
+    }
+  }
+  if (oa.is_hex() && ob.is_hex() &&
+      common_nodes(HexId(oa.id), HexId(ob.id), gone, keep) > 4) {
+    *why = "hexes " + HexId(oa.id).str() + " and " + HexId(ob.id).str() +
+           " would share more than one face";
+    return false;
+  }
+  // Faces that the merge makes coincide, and the check that the front is not pinched.
+  std::vector<std::pair<FaceIndex, FaceIndex>> coincident;
+  if (x != y) {
+    const auto neighbours = [this](NodeId n, FaceIndex skip, std::vector<NodeId>& out) {
+      for (FaceIndex f : front_.faces_at(n)) {
+        if (f == skip) continue;
+        const int c = front_.corner_of(f, n);
+        out.push_back(at(front_.face(f).nodes, c + 1));
+        out.push_back(at(front_.face(f).nodes, c + 3));
+      }
+    };
+    std::vector<NodeId> nx, ny, covered;
+    neighbours(x, fa, nx);
+    neighbours(y, fb, ny);
+    for (FaceIndex f : front_.faces_at(x)) {
+      if (f == fa) continue;
+      const auto key = sorted_nodes(front_.face(f).nodes);
+      for (FaceIndex g : front_.faces_at(y)) {
+        if (g == fb) continue;
+        stc::Quad gq = front_.face(g).nodes;
+        for (NodeId& n : gq)
+          if (n == y) n = x;
+        if (sorted_nodes(gq) != key) continue;
+        const FaceOwner of = front_.face(f).owner, og = front_.face(g).owner;
+        if (of.is_input() && og.is_input()) {
+          *why = "it would make input quads " + of.str() + " and " + og.str() + " coincide";
+          return false;
+        }
+        if (of.is_hex() && og.is_hex() && of.id == og.id) {
+          *why = "it would glue two faces of " + HexId(of.id).str();
+          return false;
+        }
+        coincident.emplace_back(f, g);
+        const int c = front_.corner_of(f, x);
+        covered.push_back(at(front_.face(f).nodes, c + 1));
+        covered.push_back(at(front_.face(f).nodes, c + 3));
+      }
+    }
+    for (NodeId p : nx) {
+      if (p == a || p == b) continue;
+      if (std::find(ny.begin(), ny.end(), p) == ny.end()) continue;
+      if (std::find(covered.begin(), covered.end(), p) == covered.end()) {
+        *why = "merging " + x.str() + " and " + y.str() + " would pinch the front along edge " +
+               x.str() + "-" + p.str();
+        return false;
+      }
+    }
+  }
+  // Apply.
+  std::vector<std::string> whiskers{oa.str(), ob.str()};
+  link(oa, ob);
+  push_nodes_of(fa);
+  push_nodes_of(fb);
+  front_.remove_face(fa);
+  front_.remove_face(fb);
+  if (x != y) {
+    front_.merge_nodes(keep, gone);
+    auto& hk = hexes_at_[keep.index()];
+    auto& hg = hexes_at_[gone.index()];
+    hk.insert(hk.end(), hg.begin(), hg.end());
+    hg.clear();
+    hg.shrink_to_fit();
+    for (const auto& [f, g] : coincident) {
+      if (!front_.is_alive(f) || !front_.is_alive(g)) continue;
+      link(front_.face(f).owner, front_.face(g).owner);
+      push_nodes_of(f);
+      push_nodes_of(g);
+      front_.remove_face(f);
+      front_.remove_face(g);
+      ++stats_.coincident_glues;
+    }
+    for (FaceIndex f : front_.faces_at(keep)) push_nodes_of(f);
+  }
+  ++stats_.seams;
+  after_rule(x == y ? "seam-coincident" : "seam", v, std::move(whiskers), HexId::invalid());
+  return true;
+}
+
+void Weaver::seam_fixpoint() {
+  for (NodeId n : blocked_seams_) seam_work_.push_back(n);
+  blocked_seams_.clear();
+  std::vector<NodeId> blocked;
+  while (!seam_work_.empty()) {
+    const NodeId n = front_.find(seam_work_.back());
+    seam_work_.pop_back();
+    if (front_.valence(n) != 2) continue;
+    std::string why;
+    if (!try_seam(n, &why)) {
+      ++stats_.blocked_seams;
+      if (std::find(blocked.begin(), blocked.end(), n) == blocked.end()) blocked.push_back(n);
+    }
+  }
+  for (NodeId n : blocked)
+    if (front_.valence(front_.find(n)) == 2) blocked_seams_.push_back(front_.find(n));
+}
+
+/// Cross at a valence-3 node v: its three faces F1 = (v, a, xab, b), F2 = (v, b, xbc, c),
+/// F3 = (v, c, xca, a) become three faces of a new hex (v, b, xab, a, c, xbc, w, xca) with one
+/// new node w. \cite seed sect. 2.2 (Fig. 2).
+bool Weaver::try_cross(NodeId v, std::string* why) {
+  const auto& at_v = front_.faces_at(v);
+  if (at_v.size() != 3) {
+    *why = "valence " + std::to_string(at_v.size());
+    return false;
+  }
+  const FaceIndex f1 = at_v[0];
+  const stc::Quad F1 = rotated(front_.face(f1).nodes, front_.corner_of(f1, v));
+  const NodeId a = F1[1], xab = F1[2], b = F1[3];
+  FaceIndex f2 = kNoFace, f3 = kNoFace;
+  stc::Quad F2{}, F3{};
+  for (FaceIndex f : {at_v[1], at_v[2]}) {
+    const stc::Quad Q = rotated(front_.face(f).nodes, front_.corner_of(f, v));
+    if (Q[1] == b) {
+      f2 = f;
+      F2 = Q;
+    } else if (Q[3] == a) {
+      f3 = f;
+      F3 = Q;
+    }
+  }
+  if (f2 == kNoFace || f3 == kNoFace || F2[3] != F3[1]) {
+    *why = "its three faces do not form a corner";
+    return false;
+  }
+  const NodeId xbc = F2[2], c = F2[3], xca = F3[2];
+  std::array<NodeId, 7> nodes{v, a, b, c, xab, xbc, xca};
+  std::sort(nodes.begin(), nodes.end());
+  if (std::adjacent_find(nodes.begin(), nodes.end()) != nodes.end()) {
+    *why = "its three faces do not have 7 distinct nodes";
+    return false;
+  }
+  const FaceOwner o1 = front_.face(f1).owner, o2 = front_.face(f2).owner, o3 = front_.face(f3).owner;
+  const auto same_hex = [](const FaceOwner& p, const FaceOwner& q) {
+    return p.is_hex() && q.is_hex() && p.id == q.id;
+  };
+  if (same_hex(o1, o2) || same_hex(o2, o3) || same_hex(o1, o3)) {
+    *why = "two of its faces belong to one hex (the new hex would share two faces with it)";
+    return false;
+  }
+  const NodeId w = new_node();
+  const std::array<FaceIndex, 3> used{f1, f2, f3};
+  make_hex({v, b, xab, a, c, xbc, w, xca}, used, "cross", v);
+  ++stats_.crosses;
+  return true;
+}
+
+/// Blind chord formation at a node v of valence >= 4 on the shrinking side: a strip face f
+/// holding v on that side and the non-strip face g across f's shrinking-side edge at v share
+/// one edge; a new hex sits on both (two new nodes). \cite seed sect. 2.2 (Fig. 2, Fig. 3).
+bool Weaver::try_blind_chord(NodeId v, const std::vector<Passage>& strip, std::string* why) {
+  *why = "no strip face at it has a non-strip face across its side edge";
+  for (const Passage& p : strip) {
+    const stc::Quad& n = front_.face(p.face).nodes;
+    if (at(n, p.entry) != v && at(n, p.entry + 3) != v) continue;
+    const int side = (p.entry + 3) % 4;  // edge (n[i+3], n[i]) on the shrinking side
+    const FaceSide g = front_.across(p.face, side);
+    if (g.face == kNoFace) throw InternalError("weave: open front edge at " + v.str());
+    if (face_mark_[static_cast<std::size_t>(g.face)] == face_stamp_) continue;  // a strip face
+    const NodeId s = at(n, p.entry + 3), t = at(n, p.entry);
+    const NodeId p2 = at(n, p.entry + 1), p3 = at(n, p.entry + 2);
+    const stc::Quad& qn = front_.face(g.face).nodes;
+    const NodeId q2 = at(qn, g.index + 2), q3 = at(qn, g.index + 3);
+    std::array<NodeId, 6> six{s, t, p2, p3, q2, q3};
+    std::sort(six.begin(), six.end());
+    if (std::adjacent_find(six.begin(), six.end()) != six.end()) {
+      *why = "faces share more than one edge's nodes";
+      continue;
+    }
+    const FaceOwner of = front_.face(p.face).owner, og = front_.face(g.face).owner;
+    if (of.is_hex() && og.is_hex() && of.id == og.id) {
+      *why = "both faces belong to " + HexId(of.id).str();
+      continue;
+    }
+    const NodeId n5 = new_node();
+    const NodeId n6 = new_node();
+    const std::array<FaceIndex, 2> used{p.face, g.face};
+    make_hex({s, p3, p2, t, q2, n5, n6, q3}, used, "blind-chord", v);
+    ++stats_.blind_chords;
+    return true;
+  }
+  return false;
+}
+
+// ---------------------------------------------------------------------------------------
+// loops
+
+std::vector<Passage> Weaver::trace_loop(FaceIndex f, int entry) const {
+  std::vector<Passage> out;
+  const Passage start{f, entry};
+  Passage cur = start;
+  const std::size_t limit = 2 * front_.num_faces() + 4;
+  do {
+    out.push_back(cur);
+    const FaceSide next = front_.across(cur.face, (cur.entry + 2) % 4);
+    if (next.face == kNoFace) throw InternalError("weave: open front edge while tracing a loop");
+    cur = Passage{next.face, next.index};
+    if (out.size() > limit) throw InternalError("weave: runaway loop trace");
+  } while (cur.face != start.face || cur.entry != start.entry);
+  return out;
+}
+
+std::vector<std::vector<Passage>> Weaver::all_loops() const {
+  std::vector<std::array<bool, 2>> seen(front_.face_capacity(), {false, false});
+  std::vector<std::vector<Passage>> loops;
+  for (std::size_t fi = 0; fi < front_.face_capacity(); ++fi) {
+    const auto f = static_cast<FaceIndex>(fi);
+    if (!front_.is_alive(f)) continue;
+    for (int dir = 0; dir < 2; ++dir) {
+      if (seen[fi][static_cast<std::size_t>(dir)]) continue;
+      auto loop = trace_loop(f, dir);
+      for (const Passage& p : loop) seen[static_cast<std::size_t>(p.face)][static_cast<std::size_t>(p.entry % 2)] = true;
+      loops.push_back(std::move(loop));
+    }
+  }
+  return loops;
+}
+
+TraceCandidate Weaver::weigh(const std::vector<Passage>& strip, int side) {
+  TraceCandidate c;
+  c.side = side;
+  c.length = strip.size();
+  // strip faces and strip nodes
+  if (face_mark_.size() < front_.face_capacity()) face_mark_.resize(front_.face_capacity(), 0);
+  if (++face_stamp_ == 0) {
+    std::fill(face_mark_.begin(), face_mark_.end(), 0);
+    face_stamp_ = 1;
+  }
+  for (const Passage& p : strip) {
+    if (face_mark_[static_cast<std::size_t>(p.face)] == face_stamp_) c.self_intersecting = true;
+    face_mark_[static_cast<std::size_t>(p.face)] = face_stamp_;
+  }
+  // Count the strip nodes, then flood from the side nodes through non-strip faces: every
+  // node reached that is not on the strip lies strictly on that side.
+  const std::uint32_t mark = next_stamp();
+  std::vector<NodeId> stack;
+  for (const Passage& p : strip) {
+    const stc::Quad& n = front_.face(p.face).nodes;
+    for (NodeId m : n) {
+      if (node_mark_[m.index()] == mark) continue;
+      node_mark_[m.index()] = mark;
+      ++c.on_strip;
+    }
+    // side A nodes: n[i], n[i+3]; side B: n[i+1], n[i+2]
+    const int first = side == 0 ? p.entry : p.entry + 1;
+    const int second = side == 0 ? p.entry + 3 : p.entry + 2;
+    stack.push_back(at(n, first));
+    stack.push_back(at(n, second));
+  }
+  while (!stack.empty()) {
+    const NodeId n = stack.back();
+    stack.pop_back();
+    for (FaceIndex f : front_.faces_at(n)) {
+      if (face_mark_[static_cast<std::size_t>(f)] == face_stamp_) continue;
+      for (NodeId m : front_.face(f).nodes) {
+        if (node_mark_[m.index()] == mark) continue;
+        node_mark_[m.index()] = mark;
+        ++c.strictly_on_side;
+        stack.push_back(m);
+      }
+    }
+  }
+  c.weight = c.strictly_on_side + c.on_strip;
+  return c;
+}
+
+std::vector<Transversal> Weaver::transversals(const std::vector<Passage>& strip, int side) const {
+  std::vector<Transversal> out;
+  out.reserve(strip.size());
+  for (const Passage& p : strip) {
+    const stc::Quad& n = front_.face(p.face).nodes;
+    if (side == 0)
+      out.push_back({at(n, p.entry), at(n, p.entry + 1)});
+    else
+      out.push_back({at(n, p.entry + 1), at(n, p.entry)});
+  }
+  return out;
+}
+
+std::vector<Passage> Weaver::retrace(const std::vector<Transversal>& edges) const {
+  for (const Transversal& t : edges) {
+    const NodeId d = front_.find(t.side_node), e = front_.find(t.other);
+    if (d == e) continue;
+    const FaceSide fs = front_.find_edge(d, e);
+    if (fs.face != kNoFace) return trace_loop(fs.face, fs.index);
+  }
+  return {};
+}
+
+std::optional<std::string> Weaver::shrink(const std::vector<Passage>& initial, int side) {
+  std::vector<Transversal> edges = transversals(initial, side);
+  std::vector<NodeId> order;
+  for (;;) {
+    seam_fixpoint();
+    const std::vector<Passage> strip = retrace(edges);
+    if (strip.empty()) return std::nullopt;
+    edges = transversals(strip, 0);
+    // mark strip faces for the blind chord rule
+    if (face_mark_.size() < front_.face_capacity()) face_mark_.resize(front_.face_capacity(), 0);
+    if (++face_stamp_ == 0) {
+      std::fill(face_mark_.begin(), face_mark_.end(), 0);
+      face_stamp_ = 1;
+    }
+    for (const Passage& p : strip) face_mark_[static_cast<std::size_t>(p.face)] = face_stamp_;
+    // side nodes in loop order, each once, then by increasing valence (stable)
+    order.clear();
+    const std::uint32_t seen = next_stamp();
+    for (const Passage& p : strip) {
+      const stc::Quad& n = front_.face(p.face).nodes;
+      for (NodeId m : {at(n, p.entry), at(n, p.entry + 3)}) {
+        if (node_mark_[m.index()] == seen) continue;
+        node_mark_[m.index()] = seen;
+        order.push_back(m);
+      }
+    }
+    std::stable_sort(order.begin(), order.end(), [this](NodeId p, NodeId q) {
+      return front_.valence(p) < front_.valence(q);
+    });
+    std::string reasons;
+    bool applied = false;
+    for (NodeId v : order) {
+      std::string why;
+      const std::size_t k = front_.valence(v);
+      if (k == 2) {
+        why = "valence 2 but its seam is blocked";
+        std::string detail;
+        if (!try_seam(v, &detail)) why += " (" + detail + ")";
+        else applied = true;
+      } else if (k == 3) {
+        applied = try_cross(v, &why);
+        if (!applied) why = "cross refused: " + why;
+      } else {
+        applied = try_blind_chord(v, strip, &why);
+        if (!applied) why = "blind chord refused: " + why;
+      }
+      if (applied) break;
+      if (reasons.size() < 600) reasons += (reasons.empty() ? "" : "; ") + v.str() + ": " + why;
+    }
+    if (!applied) return "every node on the shrinking side is blocked: " + reasons;
+  }
+}
+
+WeaveResult Weaver::run() {
+  for (std::size_t n = 0; n < front_.num_nodes(); ++n) seam_work_.push_back(NodeId(n));
+  std::reverse(seam_work_.begin(), seam_work_.end());
+  seam_fixpoint();
+  while (front_.num_faces() > 0) {
+    const auto loops = all_loops();
+    std::vector<TraceCandidate> candidates;
+    candidates.reserve(loops.size() * 2);
+    for (std::size_t l = 0; l < loops.size(); ++l) {
+      for (int side = 0; side < 2; ++side) {
+        TraceCandidate c = weigh(loops[l], side);
+        c.loop = static_cast<std::int32_t>(l);
+        candidates.push_back(c);
+      }
+    }
+    // Ranking: loops that do not cross themselves first, then the smallest weight, then the
+    // lowest loop index (loops are enumerated from the lowest front face slot), side A first.
+    std::stable_sort(candidates.begin(), candidates.end(),
+                     [](const TraceCandidate& p, const TraceCandidate& q) {
+                       if (p.self_intersecting != q.self_intersecting) return !p.self_intersecting;
+                       return p.weight < q.weight;
+                     });
+    ++stats_.selections;
+    bool progressed = false;
+    std::string failures;
+    for (std::size_t ci = 0; ci < candidates.size(); ++ci) {
+      const TraceCandidate& c = candidates[ci];
+      if (options_.trace) {
+        TraceEvent e;
+        e.kind = TraceEvent::Kind::Selection;
+        e.step = rules_applied_;
+        e.candidates = candidates;
+        e.chosen = static_cast<std::int32_t>(ci);
+        e.reason = ci == 0 ? "smallest weight (strictly on side + on strip)"
+                           : "previous candidates failed to shrink";
+        e.shrink = shrink_index_ + 1;
+        trace_.push_back(std::move(e));
+      }
+      ++shrink_index_;
+      const std::size_t before = rules_applied_;
+      const auto failure = shrink(loops[static_cast<std::size_t>(c.loop)], c.side);
+      if (!failure) {
+        ++stats_.shrinks;
+        progressed = true;
+        break;
+      }
+      ++stats_.failed_shrinks;
+      if (options_.trace) {
+        TraceEvent e;
+        e.kind = TraceEvent::Kind::ShrinkFailed;
+        e.step = rules_applied_;
+        e.reason = *failure;
+        e.shrink = shrink_index_;
+        trace_.push_back(std::move(e));
+      }
+      if (failures.size() < 2000)
+        failures += "\n  loop " + std::to_string(c.loop) + " side " + "AB"[c.side] + ": " + *failure;
+      if (rules_applied_ != before) {
+        progressed = true;  // the front changed: select again
+        break;
+      }
+    }
+    if (!progressed)
+      throw WeaveError("weave: every (loop, side) is blocked with " +
+                       std::to_string(front_.num_faces()) + " front faces left and " +
+                       std::to_string(hexes_.size()) + " hexes built:" + failures);
+    seam_fixpoint();
+  }
+
+  // Assemble the result: canonical node ids, input nodes unchanged, interior nodes compacted
+  // in order of creation.
+  WeaveResult result;
+  result.num_input_nodes = front_.num_input_nodes();
+  std::vector<NodeId> renumber(front_.num_nodes(), NodeId::invalid());
+  std::size_t next = front_.num_input_nodes();
+  for (std::size_t n = 0; n < front_.num_input_nodes(); ++n) renumber[n] = NodeId(n);
+  for (std::size_t n = front_.num_input_nodes(); n < front_.num_nodes(); ++n)
+    if (front_.find(NodeId(n)) == NodeId(n)) renumber[n] = NodeId(next++);
+  result.complex.num_nodes = next;
+  result.complex.hexes.reserve(hexes_.size());
+  for (const stc::Hex& h : hexes_) {
+    stc::Hex out{};
+    for (std::size_t i = 0; i < 8; ++i) out[i] = renumber[front_.find(h[i]).index()];
+    result.complex.hexes.push_back(out);
+  }
+  result.dual = std::move(dual_);
+  result.hex_shrink = std::move(hex_shrink_);
+  result.hex_rule = std::move(hex_rule_);
+  result.stats = stats_;
+  result.trace = std::move(trace_);
+  return result;
+}
+
+}  // namespace
+
+WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options) {
+  Weaver weaver(surface, options);
+  return weaver.run();
+}
+
+}  // namespace stcweave::weave
