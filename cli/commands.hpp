@@ -16,5 +16,7 @@ using Action = std::function<int()>;
 
 Action add_loops_command(CLI::App& app);
 Action add_sheets_command(CLI::App& app);
+Action add_mesh_command(CLI::App& app);
+Action add_check_command(CLI::App& app);
 
 }  // namespace stcweave::cli

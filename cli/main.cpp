@@ -22,6 +22,8 @@ int main(int argc, char** argv) {
     cli::Action action = factory(app);
     commands.emplace_back(app.get_subcommands({}).at(before), std::move(action));
   };
+  add(cli::add_mesh_command);
+  add(cli::add_check_command);
   add(cli::add_loops_command);
   add(cli::add_sheets_command);
 

@@ -112,7 +112,9 @@ class Weaver {
   // ---- loops ----
   std::vector<Passage> trace_loop(FaceIndex f, int entry) const;
   std::vector<std::vector<Passage>> all_loops() const;
-  TraceCandidate weigh(const std::vector<Passage>& strip, int side);
+  /// Weights of shrinking the loop to side A and to side B. \pre label_components() ran.
+  std::array<TraceCandidate, 2> weigh(const std::vector<Passage>& strip);
+  void label_components();
   std::vector<Transversal> transversals(const std::vector<Passage>& strip, int side) const;
   std::vector<Passage> retrace(const std::vector<Transversal>& edges) const;
   /// Shrinks the loop to side `side`. Returns std::nullopt on success, else why it failed.
@@ -143,6 +145,8 @@ class Weaver {
   std::vector<std::uint32_t> node_mark_;
   std::uint32_t stamp_ = 0;
   std::vector<std::uint32_t> face_mark_;
+  std::vector<std::size_t> component_of_;
+  std::vector<std::size_t> component_size_;
   std::uint32_t face_stamp_ = 0;
 };
 
@@ -548,52 +552,131 @@ std::vector<std::vector<Passage>> Weaver::all_loops() const {
   return loops;
 }
 
-TraceCandidate Weaver::weigh(const std::vector<Passage>& strip, int side) {
-  TraceCandidate c;
-  c.side = side;
-  c.length = strip.size();
-  // strip faces and strip nodes
+std::array<TraceCandidate, 2> Weaver::weigh(const std::vector<Passage>& strip) {
+  std::array<TraceCandidate, 2> c;
+  c[0].side = 0;
+  c[1].side = 1;
+  c[0].length = c[1].length = strip.size();
   if (face_mark_.size() < front_.face_capacity()) face_mark_.resize(front_.face_capacity(), 0);
   if (++face_stamp_ == 0) {
     std::fill(face_mark_.begin(), face_mark_.end(), 0);
     face_stamp_ = 1;
   }
+  bool self_intersecting = false;
   for (const Passage& p : strip) {
-    if (face_mark_[static_cast<std::size_t>(p.face)] == face_stamp_) c.self_intersecting = true;
+    if (face_mark_[static_cast<std::size_t>(p.face)] == face_stamp_) self_intersecting = true;
     face_mark_[static_cast<std::size_t>(p.face)] = face_stamp_;
   }
-  // Count the strip nodes, then flood from the side nodes through non-strip faces: every
-  // node reached that is not on the strip lies strictly on that side.
-  const std::uint32_t mark = next_stamp();
-  std::vector<NodeId> stack;
+  c[0].self_intersecting = c[1].self_intersecting = self_intersecting;
+  // Stamps: `on` for strip nodes, `side[0]`/`side[1]` for nodes reached from either side.
+  const std::uint32_t on = next_stamp();
+  const std::array<std::uint32_t, 2> side{next_stamp(), next_stamp()};
+  std::array<std::vector<NodeId>, 2> stack;
+  std::size_t on_strip = 0;
   for (const Passage& p : strip) {
     const stc::Quad& n = front_.face(p.face).nodes;
     for (NodeId m : n) {
-      if (node_mark_[m.index()] == mark) continue;
-      node_mark_[m.index()] = mark;
-      ++c.on_strip;
+      if (node_mark_[m.index()] == on) continue;
+      node_mark_[m.index()] = on;
+      ++on_strip;
     }
     // side A nodes: n[i], n[i+3]; side B: n[i+1], n[i+2]
-    const int first = side == 0 ? p.entry : p.entry + 1;
-    const int second = side == 0 ? p.entry + 3 : p.entry + 2;
-    stack.push_back(at(n, first));
-    stack.push_back(at(n, second));
+    stack[0].push_back(at(n, p.entry));
+    stack[0].push_back(at(n, p.entry + 3));
+    stack[1].push_back(at(n, p.entry + 1));
+    stack[1].push_back(at(n, p.entry + 2));
   }
-  while (!stack.empty()) {
-    const NodeId n = stack.back();
-    stack.pop_back();
+  c[0].on_strip = c[1].on_strip = on_strip;
+  // Flood both sides through non-strip faces, one node at a time each, until one side is
+  // exhausted: that side is then complete, and on a loop that separates its component the
+  // other side is the rest of the component. If the floods meet, the loop does not separate
+  // (it crosses itself): count each side by a full flood.
+  std::array<std::size_t, 2> count{0, 0};
+  bool met = false;
+  const auto expand = [&](int d) {
+    const NodeId n = stack[static_cast<std::size_t>(d)].back();
+    stack[static_cast<std::size_t>(d)].pop_back();
     for (FaceIndex f : front_.faces_at(n)) {
       if (face_mark_[static_cast<std::size_t>(f)] == face_stamp_) continue;
       for (NodeId m : front_.face(f).nodes) {
-        if (node_mark_[m.index()] == mark) continue;
-        node_mark_[m.index()] = mark;
-        ++c.strictly_on_side;
-        stack.push_back(m);
+        const std::uint32_t mark = node_mark_[m.index()];
+        if (mark == on || mark == side[static_cast<std::size_t>(d)]) continue;
+        if (mark == side[static_cast<std::size_t>(1 - d)]) {
+          met = true;
+          continue;
+        }
+        node_mark_[m.index()] = side[static_cast<std::size_t>(d)];
+        ++count[static_cast<std::size_t>(d)];
+        stack[static_cast<std::size_t>(d)].push_back(m);
       }
     }
+  };
+  while (!met && !stack[0].empty() && !stack[1].empty()) {
+    expand(0);
+    if (!met && !stack[1].empty()) expand(1);
   }
-  c.weight = c.strictly_on_side + c.on_strip;
+  if (!met) {
+    const int done = stack[0].empty() ? 0 : 1;
+    const std::size_t total = component_size_[component_of_[front_.face(strip.front().face).nodes[0].index()]];
+    c[static_cast<std::size_t>(done)].strictly_on_side = count[static_cast<std::size_t>(done)];
+    c[static_cast<std::size_t>(1 - done)].strictly_on_side = total - on_strip - count[static_cast<std::size_t>(done)];
+  } else {
+    for (int d = 0; d < 2; ++d) {
+      const std::uint32_t mark = next_stamp();
+      for (const Passage& p : strip)
+        for (NodeId m : front_.face(p.face).nodes) node_mark_[m.index()] = mark;
+      std::vector<NodeId> st;
+      for (const Passage& p : strip) {
+        const stc::Quad& n = front_.face(p.face).nodes;
+        st.push_back(at(n, d == 0 ? p.entry : p.entry + 1));
+        st.push_back(at(n, d == 0 ? p.entry + 3 : p.entry + 2));
+      }
+      std::size_t strict = 0;
+      while (!st.empty()) {
+        const NodeId n = st.back();
+        st.pop_back();
+        for (FaceIndex f : front_.faces_at(n)) {
+          if (face_mark_[static_cast<std::size_t>(f)] == face_stamp_) continue;
+          for (NodeId m : front_.face(f).nodes) {
+            if (node_mark_[m.index()] == mark) continue;
+            node_mark_[m.index()] = mark;
+            ++strict;
+            st.push_back(m);
+          }
+        }
+      }
+      c[static_cast<std::size_t>(d)].strictly_on_side = strict;
+    }
+  }
+  for (auto& x : c) x.weight = x.strictly_on_side + x.on_strip;
   return c;
+}
+
+void Weaver::label_components() {
+  component_of_.assign(front_.num_nodes(), 0);
+  component_size_.clear();
+  const std::uint32_t mark = next_stamp();
+  std::vector<NodeId> stack;
+  for (std::size_t v = 0; v < front_.num_nodes(); ++v) {
+    const NodeId start(v);
+    if (front_.valence(start) == 0 || node_mark_[v] == mark) continue;
+    const std::size_t comp = component_size_.size();
+    component_size_.push_back(0);
+    node_mark_[v] = mark;
+    stack.push_back(start);
+    while (!stack.empty()) {
+      const NodeId n = stack.back();
+      stack.pop_back();
+      component_of_[n.index()] = comp;
+      ++component_size_[comp];
+      for (FaceIndex f : front_.faces_at(n))
+        for (NodeId m : front_.face(f).nodes) {
+          if (node_mark_[m.index()] == mark) continue;
+          node_mark_[m.index()] = mark;
+          stack.push_back(m);
+        }
+    }
+  }
 }
 
 std::vector<Transversal> Weaver::transversals(const std::vector<Passage>& strip, int side) const {
@@ -680,9 +763,9 @@ WeaveResult Weaver::run() {
     const auto loops = all_loops();
     std::vector<TraceCandidate> candidates;
     candidates.reserve(loops.size() * 2);
+    label_components();
     for (std::size_t l = 0; l < loops.size(); ++l) {
-      for (int side = 0; side < 2; ++side) {
-        TraceCandidate c = weigh(loops[l], side);
+      for (TraceCandidate c : weigh(loops[l])) {
         c.loop = static_cast<std::int32_t>(l);
         candidates.push_back(c);
       }

@@ -3,6 +3,7 @@
 /// Meshes with coordinates: a quad surface or a hex complex plus a "#V by 3" point matrix.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cstddef>
 #include <string>
 #include <vector>

@@ -1,0 +1,207 @@
+/// `stcweave mesh IN -o OUT`: the main job. Reads a quad surface (or a hex mesh, whose
+/// boundary is taken), weaves it, validates the complex (an invalid one is never written
+/// unless --keep-invalid), places the interior nodes and writes the hex mesh.
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "stcweave/primal/io.hpp"
+#include "stcweave/primal/pipeline.hpp"
+#include "stcweave/stc/errors.hpp"
+#include "stcweave/stc/hex_stc.hpp"
+
+namespace stcweave::cli {
+namespace {
+
+struct MeshArgs {
+  std::string input;
+  std::string output;
+  std::string input_format = "auto";
+  std::string output_format = "auto";
+  std::string rules = "reliable";
+  std::string report;
+  std::string trace;
+  bool check = false;
+  bool keep_invalid = false;
+  bool quiet = false;
+  bool progress = false;
+};
+
+nlohmann::json trace_json(const weave::TraceEvent& e) {
+  nlohmann::json j;
+  j["step"] = e.step;
+  j["shrink"] = e.shrink;
+  switch (e.kind) {
+    case weave::TraceEvent::Kind::Selection: {
+      j["event"] = "selection";
+      j["reason"] = e.reason;
+      nlohmann::json cands = nlohmann::json::array();
+      for (const auto& c : e.candidates)
+        cands.push_back({{"loop", c.loop},
+                         {"side", c.side == 0 ? "A" : "B"},
+                         {"length", c.length},
+                         {"strictly_on_side", c.strictly_on_side},
+                         {"on_strip", c.on_strip},
+                         {"weight", c.weight},
+                         {"self_intersecting", c.self_intersecting}});
+      j["chosen"] = cands.at(static_cast<std::size_t>(e.chosen));
+      j["candidates"] = cands;
+      break;
+    }
+    case weave::TraceEvent::Kind::Rule:
+      j["event"] = "rule";
+      j["rule"] = e.rule;
+      j["node"] = e.node.str();
+      j["faces"] = e.faces;
+      j["hex"] = e.hex.is_valid() ? nlohmann::json(e.hex.str()) : nlohmann::json(nullptr);
+      break;
+    case weave::TraceEvent::Kind::ShrinkFailed:
+      j["event"] = "shrink_failed";
+      j["reason"] = e.reason;
+      break;
+  }
+  return j;
+}
+
+void write_text_atomically(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    if (!out) throw IoError("cannot write " + path + ": check the folder exists and is writable");
+    out << text;
+    out.flush();
+    if (!out) throw IoError("writing " + path + " failed (disk full?)");
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw IoError("cannot rename " + tmp + " to " + path);
+  }
+}
+
+int run_mesh(const MeshArgs& a) {
+  primal::MeshOptions options;
+  options.weave.rules = weave::rule_set_from_name(a.rules);
+  options.weave.check = a.check;
+  options.weave.trace = !a.trace.empty();
+  options.keep_invalid = a.keep_invalid;
+  const bool show_progress = a.progress || (!a.quiet && isatty(STDERR_FILENO) != 0);
+  if (show_progress) {
+    options.on_stage = [](const std::string& s) { std::cerr << "stcweave: " << s << "...\n"; };
+    options.weave.progress = [](const weave::WeaveProgress& p) {
+      std::cerr << "stcweave: weaving: " << p.hexes << " hexes, " << p.front_faces
+                << " front faces left, " << p.loops_shrunk << " loops shrunk\n";
+    };
+  }
+  const primal::Format out_format = a.output_format == "auto"
+                                        ? primal::format_from_path(a.output)
+                                        : primal::format_from_name(a.output_format);
+  const primal::MeshFile file = primal::read_mesh(
+      a.input, a.input_format == "auto" ? primal::Format::Auto
+                                        : primal::format_from_name(a.input_format));
+  const primal::MeshResult r = primal::mesh_file(file, options);
+  const auto t0 = std::chrono::steady_clock::now();
+  const stc::HexStc stc = stc::build_hex_stc(r.mesh.complex);
+  const double stc_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::size_t blind_chords = 0;
+  for (const auto& c : stc.chords) blind_chords += stc::is_blind(c) ? 1 : 0;
+
+  const auto t1 = std::chrono::steady_clock::now();
+  primal::write_hex_mesh(r.mesh, a.output, out_format);
+  const double write_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+
+  nlohmann::json report;
+  report["input"] = a.input;
+  report["output"] = a.output;
+  report["rules"] = a.rules;
+  report["quads"] = r.surface.surface.quads.size();
+  report["hexes"] = r.mesh.complex.hexes.size();
+  report["nodes"] = r.mesh.complex.num_nodes;
+  report["interior_nodes"] = r.mesh.complex.num_nodes - r.woven.num_input_nodes;
+  report["valid"] = r.validation.valid;
+  report["validation"] = r.validation.summary();
+  report["sheets"] = stc.sheets.size();
+  report["chords"] = stc.chords.size();
+  report["blind_chords"] = blind_chords;
+  report["flipped_quads"] = r.orientation.flipped_quads;
+  report["quality"] = {{"min_scaled_jacobian", r.quality.min_scaled_jacobian},
+                       {"mean_scaled_jacobian", r.quality.mean_scaled_jacobian},
+                       {"inverted", r.quality.inverted},
+                       {"below_0_2", r.quality.below_0_2}};
+  const auto& s = r.woven.stats;
+  report["weave"] = {{"selections", s.selections},     {"shrinks", s.shrinks},
+                     {"failed_shrinks", s.failed_shrinks}, {"seams", s.seams},
+                     {"coincident_glues", s.coincident_glues}, {"crosses", s.crosses},
+                     {"blind_chords", s.blind_chords}, {"blocked_seams", s.blocked_seams}};
+  report["seconds"] = {{"diagnose", r.seconds.diagnose}, {"orient", r.seconds.orient},
+                       {"weave", r.seconds.weave},       {"validate", r.seconds.validate},
+                       {"recover", r.seconds.recover},   {"quality", r.seconds.quality},
+                       {"stc", stc_seconds},             {"write", write_seconds},
+                       {"total", r.seconds.total() + stc_seconds + write_seconds}};
+
+  if (!a.report.empty()) write_text_atomically(a.report, report.dump(1) + "\n");
+  if (!a.trace.empty()) {
+    std::string text;
+    for (const auto& e : r.woven.trace) text += trace_json(e).dump() + "\n";
+    write_text_atomically(a.trace, text);
+  }
+  if (!a.quiet) {
+    std::cout << "input      " << a.input << ": " << r.surface.surface.quads.size() << " quads";
+    if (r.orientation.flipped_quads > 0)
+      std::cout << " (" << r.orientation.flipped_quads << " quads re-oriented outward)";
+    std::cout << "\nhexes      " << r.mesh.complex.hexes.size() << " (" << report["interior_nodes"]
+              << " interior nodes, " << stc.sheets.size() << " sheets, " << stc.chords.size()
+              << " chords, " << blind_chords << " blind)\n";
+    std::cout << "valid      " << (r.validation.valid ? "yes" : "NO: " + r.validation.summary())
+              << "\n";
+    std::cout << "quality    min scaled Jacobian " << r.quality.min_scaled_jacobian << ", mean "
+              << r.quality.mean_scaled_jacobian << ", inverted " << r.quality.inverted
+              << " (harmonic placement, not untangled)\n";
+    std::cout << "time       " << r.seconds.total() + stc_seconds + write_seconds << " s (weave "
+              << r.seconds.weave << " s)\n";
+    std::cout << "output     " << a.output << "\n";
+  }
+  return r.validation.valid ? kSuccess : kInternal;
+}
+
+}  // namespace
+
+Action add_mesh_command(CLI::App& app) {
+  auto args = std::make_shared<MeshArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "mesh",
+      "Fill a closed quad surface with hexahedra: read IN (a quad surface, or a hex mesh whose "
+      "boundary is taken), weave its STC, check the hex complex (an invalid complex is never "
+      "written: exit code 3), place interior nodes, write OUT.");
+  sub->add_option("input", args->input, "input surface (OBJ, OFF, VTK, VTU, MSH, MEDIT, MFEM)")
+      ->required();
+  sub->add_option("-o,--output", args->output,
+                  "output hex mesh; format from the extension (.vtk .vtu .msh .mesh .inp)")
+      ->required();
+  sub->add_option("--input-format", args->input_format, "input format name (default: auto)");
+  sub->add_option("--output-format", args->output_format,
+                  "output format name: vtk, vtu, msh, msh2, medit, inp (default: auto)");
+  sub->add_option("--rules", args->rules, "loop-selection rule set: reliable")
+      ->capture_default_str();
+  sub->add_option("--report", args->report,
+                  "write a JSON report (hexes, nodes, interior_nodes, valid, sheets, chords, "
+                  "quality, seconds per stage)");
+  sub->add_option("--trace", args->trace,
+                  "write a JSON-lines trace: one line per loop selection (candidates, weights, "
+                  "choice) and per rule application (rule, node, faces, hex)");
+  sub->add_flag("--check", args->check,
+                "check the front invariants after every rule (slow, for debugging)");
+  sub->add_flag("--keep-invalid", args->keep_invalid,
+                "write the mesh even when the woven complex is invalid (exit code 3 all the same)");
+  sub->add_flag("--progress", args->progress, "print stage and weaving progress on stderr");
+  sub->add_flag("-q,--quiet", args->quiet, "print nothing on success");
+  return [args] { return run_mesh(*args); };
+}
+
+}  // namespace stcweave::cli

@@ -1,0 +1,62 @@
+#pragma once
+/// \file
+/// The whole pipeline as one call: diagnose -> require weavable -> orient outward -> weave
+/// -> validate the complex -> primal recovery -> quality. Each stage is also a public
+/// function of its own; this only strings them together, times them and keeps every
+/// intermediate value for inspection.
+
+#include <functional>
+#include <string>
+
+#include "stcweave/primal/diagnose.hpp"
+#include "stcweave/primal/mesh.hpp"
+#include "stcweave/primal/quality.hpp"
+#include "stcweave/primal/recover.hpp"
+#include "stcweave/stc/validate.hpp"
+#include "stcweave/weave/weave.hpp"
+
+namespace stcweave::primal {
+
+struct MeshOptions {
+  weave::WeaveOptions weave;
+  /// Return an invalid complex instead of throwing InternalError (for debugging).
+  bool keep_invalid = false;
+  /// Called when a stage starts ("diagnose", "orient", "weave", "validate", "recover",
+  /// "quality").
+  std::function<void(const std::string& stage)> on_stage;
+};
+
+/// Wall-clock seconds per stage.
+struct StageSeconds {
+  double diagnose = 0.0;
+  double orient = 0.0;
+  double weave = 0.0;
+  double validate = 0.0;
+  double recover = 0.0;
+  double quality = 0.0;
+  [[nodiscard]] double total() const {
+    return diagnose + orient + weave + validate + recover + quality;
+  }
+};
+
+struct MeshResult {
+  HexMesh mesh;                   ///< input nodes first, with their ids in `surface`
+  SurfaceMesh surface;            ///< the input surface as woven (oriented outward)
+  std::vector<NodeId> file_nodes;  ///< per surface node, its node id in the file
+  SurfaceDiagnosis diagnosis;
+  OrientationReport orientation;
+  weave::WeaveResult woven;
+  stc::ValidationReport validation;
+  HarmonicReport harmonic;
+  QualitySummary quality;
+  StageSeconds seconds;
+};
+
+/// Meshes the quad surface of `file` (its quads, or the boundary of its hexes).
+/// \throw TopologyError for a surface that cannot be woven (see `require_weavable`).
+/// \throw Unsupported for a component of genus > 0 or nested shells.
+/// \throw WeaveError when the weave is blocked.
+/// \throw InternalError when the woven complex breaks an invariant (unless keep_invalid).
+MeshResult mesh_file(const MeshFile& file, const MeshOptions& options = {});
+
+}  // namespace stcweave::primal

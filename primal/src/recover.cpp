@@ -1,0 +1,96 @@
+#include "stcweave/primal/recover.hpp"
+
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <vector>
+
+#include "stcweave/stc/errors.hpp"
+
+namespace stcweave::primal {
+
+HarmonicReport harmonic_positions(HexMesh& mesh, std::size_t num_fixed) {
+  HarmonicReport report;
+  const std::size_t n = static_cast<std::size_t>(mesh.points.rows());
+  if (num_fixed >= n) return report;
+  const std::size_t free = n - num_fixed;
+  report.free_nodes = free;
+  // Unique hex edges (as node pairs), each contributing to the graph Laplacian once.
+  std::vector<std::pair<std::int32_t, std::int32_t>> edges;
+  edges.reserve(mesh.complex.hexes.size() * 12);
+  for (const stc::Hex& h : mesh.complex.hexes)
+    for (const auto& e : stc::kHexEdges) {
+      std::int32_t a = h[static_cast<std::size_t>(e[0])].value();
+      std::int32_t b = h[static_cast<std::size_t>(e[1])].value();
+      if (a > b) std::swap(a, b);
+      edges.emplace_back(a, b);
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+
+  using Triplet = Eigen::Triplet<double>;
+  std::vector<Triplet> triplets;
+  Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Zero(static_cast<Eigen::Index>(free), 3);
+  std::vector<double> degree(free, 0.0);
+  const auto k = [&](std::int32_t node) { return static_cast<Eigen::Index>(node) - static_cast<Eigen::Index>(num_fixed); };
+  for (const auto& [a, b] : edges) {
+    const bool fa = static_cast<std::size_t>(a) < num_fixed;
+    const bool fb = static_cast<std::size_t>(b) < num_fixed;
+    if (!fa) degree[static_cast<std::size_t>(k(a))] += 1.0;
+    if (!fb) degree[static_cast<std::size_t>(k(b))] += 1.0;
+    if (!fa && !fb) {
+      triplets.emplace_back(k(a), k(b), -1.0);
+      triplets.emplace_back(k(b), k(a), -1.0);
+    } else if (!fa) {
+      rhs.row(k(a)) += mesh.points.row(b);
+    } else if (!fb) {
+      rhs.row(k(b)) += mesh.points.row(a);
+    }
+  }
+  Eigen::MatrixX3d guess(static_cast<Eigen::Index>(free), 3);
+  for (std::size_t i = 0; i < free; ++i) {
+    if (degree[i] == 0.0)
+      throw SolverError("harmonic placement: interior node n" + std::to_string(num_fixed + i) +
+                        " is on no hex edge");
+    triplets.emplace_back(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i), degree[i]);
+  }
+  // Start from the centroid of the fixed nodes: any start converges, this one is neutral.
+  const Eigen::RowVector3d centre =
+      mesh.points.topRows(static_cast<Eigen::Index>(num_fixed)).colwise().mean();
+  guess.rowwise() = centre;
+  Eigen::SparseMatrix<double> laplacian(static_cast<Eigen::Index>(free), static_cast<Eigen::Index>(free));
+  laplacian.setFromTriplets(triplets.begin(), triplets.end());
+  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg;
+  cg.setTolerance(1e-10);
+  cg.setMaxIterations(std::max<Eigen::Index>(1000, 20 * static_cast<Eigen::Index>(free)));
+  cg.compute(laplacian);
+  if (cg.info() != Eigen::Success) throw SolverError("harmonic placement: cannot set up the solver");
+  for (int c = 0; c < 3; ++c) {
+    const Eigen::VectorXd x = cg.solveWithGuess(rhs.col(c), guess.col(c));
+    if (cg.info() != Eigen::Success)
+      throw SolverError("harmonic placement did not converge (" + std::to_string(cg.iterations()) +
+                        " iterations, residual " + std::to_string(cg.error()) +
+                        "): some interior nodes may be cut off from the boundary");
+    mesh.points.block(static_cast<Eigen::Index>(num_fixed), c, static_cast<Eigen::Index>(free), 1) = x;
+    report.iterations = std::max<std::size_t>(report.iterations, static_cast<std::size_t>(cg.iterations()));
+    report.residual = std::max(report.residual, cg.error());
+  }
+  return report;
+}
+
+HexMesh recover_hex_mesh(const Points& input_points, const weave::WeaveResult& woven,
+                         HarmonicReport* report) {
+  if (static_cast<std::size_t>(input_points.rows()) != woven.num_input_nodes)
+    throw InvalidInput("recover_hex_mesh: " + std::to_string(input_points.rows()) +
+                       " input points for a weave of " + std::to_string(woven.num_input_nodes) +
+                       " input nodes");
+  HexMesh mesh;
+  mesh.complex = woven.complex;
+  mesh.points.resize(static_cast<Eigen::Index>(woven.complex.num_nodes), 3);
+  mesh.points.topRows(input_points.rows()) = input_points;
+  const HarmonicReport r = harmonic_positions(mesh, woven.num_input_nodes);
+  if (report != nullptr) *report = r;
+  return mesh;
+}
+
+}  // namespace stcweave::primal
