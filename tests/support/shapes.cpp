@@ -59,6 +59,47 @@ primal::SurfaceMesh box_surface(int a, int b, int c, double sx, double sy, doubl
   return boundary_of(box_hexes(a, b, c, sx, sy, sz));
 }
 
+primal::HexMesh voxel_hexes(const std::vector<std::array<int, 3>>& cells) {
+  primal::HexMesh m;
+  std::map<std::array<int, 3>, NodeId> ids;
+  std::vector<std::array<int, 3>> corners;
+  const auto node = [&](int i, int j, int k) {
+    const auto [it, fresh] = ids.emplace(std::array<int, 3>{i, j, k}, NodeId(corners.size()));
+    if (fresh) corners.push_back({i, j, k});
+    return it->second;
+  };
+  for (const auto& [i, j, k] : cells)
+    m.complex.hexes.push_back({node(i, j, k), node(i + 1, j, k), node(i + 1, j + 1, k),
+                               node(i, j + 1, k), node(i, j, k + 1), node(i + 1, j, k + 1),
+                               node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1)});
+  m.points.resize(static_cast<Eigen::Index>(corners.size()), 3);
+  for (std::size_t n = 0; n < corners.size(); ++n)
+    m.points.row(static_cast<Eigen::Index>(n)) << corners[n][0], corners[n][1], corners[n][2];
+  m.complex.num_nodes = corners.size();
+  return m;
+}
+
+primal::SurfaceMesh voxel_surface(const std::vector<std::array<int, 3>>& cells) {
+  return boundary_of(voxel_hexes(cells));
+}
+
+std::vector<std::array<int, 3>> lblock_cells() {
+  std::vector<std::array<int, 3>> cells;
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i)
+        if (i == 0 || j == 0) cells.push_back({i, j, k});
+  return cells;
+}
+
+std::vector<std::array<int, 3>> ring_cells() {
+  std::vector<std::array<int, 3>> cells;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i)
+      if (i != 1 || j != 1) cells.push_back({i, j, 0});
+  return cells;
+}
+
 primal::SurfaceMesh rhombic_dodecahedron() {
   primal::SurfaceMesh s;
   // nodes 0..7: cube corners (+-1,+-1,+-1); 8..13: (+-2,0,0), (0,+-2,0), (0,0,+-2)

@@ -3,6 +3,9 @@
 /// Test shapes generated in code: structured boxes (surface and hex mesh), the seed's
 /// Fig. 5 bar, the rhombic dodecahedron. Surfaces are oriented outward.
 
+#include <array>
+#include <vector>
+
 #include "stcweave/primal/mesh.hpp"
 
 namespace stcweave::test {
@@ -20,6 +23,19 @@ primal::SurfaceMesh box_surface(int a, int b, int c, double sx = 1.0, double sy 
 /// The boundary quads of a hex mesh (faces used by one hex, outward), nodes renumbered
 /// compactly. Independent of the library's own extraction, for cross-checks.
 primal::SurfaceMesh boundary_of(const primal::HexMesh& mesh);
+
+/// The hex mesh of a union of unit cubes (voxel (i,j,k) = [i,i+1]x[j,j+1]x[k,k+1]), hexes
+/// positively oriented, shared nodes merged.
+primal::HexMesh voxel_hexes(const std::vector<std::array<int, 3>>& cells);
+
+/// The boundary of `voxel_hexes(cells)`.
+primal::SurfaceMesh voxel_surface(const std::vector<std::array<int, 3>>& cells);
+
+/// Ten unit cubes: 3x3x2 minus a 2x2x2 corner (an L-block).
+std::vector<std::array<int, 3>> lblock_cells();
+
+/// Eight unit cubes: the 3x3x1 slab minus its centre (a square ring, genus 1).
+std::vector<std::array<int, 3>> ring_cells();
 
 /// The rhombic dodecahedron: 12 rhombi, 14 nodes, outward.
 primal::SurfaceMesh rhombic_dodecahedron();

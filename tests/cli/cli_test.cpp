@@ -1,0 +1,140 @@
+// The command-line program as a user meets it: exit codes, messages, outputs, determinism.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int code = -1;
+  std::string out;  // stdout and stderr together
+};
+
+CliRun run(const std::string& args) {
+  const std::string cmd = std::string(STCWEAVE_CLI) + " " + args + " 2>&1";
+  CliRun r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (pipe == nullptr) return r;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), static_cast<int>(buf.size()), pipe) != nullptr) r.out += buf.data();
+  const int status = pclose(pipe);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("stcweave_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string data(const std::string& name) const {
+    return std::string(STCWEAVE_SOURCE_DIR) + "/data/" + name;
+  }
+  fs::path dir_;
+};
+
+TEST_F(Cli, HelpExitsZeroAndNamesTheSubcommands) {
+  const CliRun r = run("--help");
+  EXPECT_EQ(r.code, 0);
+  for (const char* sub : {"mesh", "check", "loops", "sheets"})
+    EXPECT_NE(r.out.find(sub), std::string::npos) << sub;
+  EXPECT_EQ(run("mesh --help").code, 0);
+}
+
+TEST_F(Cli, UsageErrorsExitOne) {
+  EXPECT_EQ(run("").code, 1);
+  EXPECT_EQ(run("mesh").code, 1);
+  EXPECT_EQ(run("frobnicate").code, 1);
+}
+
+TEST_F(Cli, MeshWritesAValidMeshAndAReport) {
+  const fs::path out = dir_ / "bar.vtk", report = dir_ / "bar.json";
+  const CliRun r = run("mesh " + data("bar_1x1x3.obj") + " -o " + out.string() + " --report " +
+                    report.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  ASSERT_TRUE(fs::exists(out));
+  const auto j = nlohmann::json::parse(slurp(report));
+  EXPECT_EQ(j.at("hexes"), 3);
+  EXPECT_EQ(j.at("valid"), true);
+  for (const char* key : {"nodes", "interior_nodes", "sheets", "chords", "seconds"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  const CliRun c = run("check " + out.string() + " --boundary " + data("bar_1x1x3.obj"));
+  EXPECT_EQ(c.code, 0) << c.out;
+}
+
+TEST_F(Cli, MeshIsDeterministicByteForByte) {
+  const fs::path a = dir_ / "a.vtk", b = dir_ / "b.vtk";
+  ASSERT_EQ(run("mesh " + data("lblock.obj") + " -o " + a.string() + " -q").code, 0);
+  ASSERT_EQ(run("mesh " + data("lblock.obj") + " -o " + b.string() + " -q").code, 0);
+  EXPECT_EQ(slurp(a), slurp(b));
+}
+
+TEST_F(Cli, TraceHasSelectionAndRuleLines) {
+  const fs::path out = dir_ / "l.vtk", trace = dir_ / "t.jsonl";
+  ASSERT_EQ(run("mesh " + data("lblock.obj") + " -o " + out.string() + " -q --trace " +
+                trace.string())
+                .code,
+            0);
+  std::ifstream in(trace);
+  std::string line;
+  int selections = 0, rules = 0;
+  while (std::getline(in, line)) {
+    const auto j = nlohmann::json::parse(line);
+    if (j.at("event") == "selection") {
+      ++selections;
+      EXPECT_TRUE(j.contains("candidates"));
+      EXPECT_TRUE(j.at("chosen").contains("weight"));
+    }
+    if (j.at("event") == "rule") ++rules;
+  }
+  EXPECT_GT(selections, 0);
+  EXPECT_GE(rules, 10);
+}
+
+TEST_F(Cli, MissingInputExitsTwoWithTheName) {
+  const CliRun r = run("mesh " + (dir_ / "nope.obj").string() + " -o " + (dir_ / "x.vtk").string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.out.find("nope.obj"), std::string::npos) << r.out;
+}
+
+TEST_F(Cli, OpenSurfaceExitsTwoAndWritesNothing) {
+  const fs::path in = dir_ / "open.obj", out = dir_ / "open.vtk";
+  std::ofstream(in) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+  const CliRun r = run("mesh " + in.string() + " -o " + out.string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("open"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(Cli, UnknownOutputExtensionExitsTwoBeforeWeaving) {
+  const CliRun r = run("mesh " + data("bar_1x1x3.obj") + " -o " + (dir_ / "x.xyz").string());
+  EXPECT_EQ(r.code, 2) << r.out;
+}
+
+TEST_F(Cli, UnknownRuleSetExitsTwo) {
+  const CliRun r = run("mesh " + data("bar_1x1x3.obj") + " -o " + (dir_ / "x.vtk").string() +
+                    " --rules magic");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("reliable"), std::string::npos) << r.out;
+}
+
+}  // namespace

@@ -1,0 +1,128 @@
+#include "stcweave/primal/pipeline.hpp"
+
+#include <gtest/gtest.h>
+
+#include "stcweave/stc/errors.hpp"
+#include "support/shapes.hpp"
+
+namespace stcweave::primal {
+namespace {
+
+MeshFile file_of(const SurfaceMesh& s, const std::string& name) {
+  MeshFile f;
+  f.path = name;
+  f.format = "memory";
+  f.points = s.points;
+  f.quads = s.surface.quads;
+  return f;
+}
+
+TEST(Pipeline, LBlockGivesItsTenStructuredHexes) {
+  const MeshResult r = mesh_file(file_of(test::voxel_surface(test::lblock_cells()), "lblock"));
+  EXPECT_EQ(r.mesh.complex.hexes.size(), 10u);
+  EXPECT_TRUE(r.validation.valid) << r.validation.summary();
+  EXPECT_EQ(r.quality.inverted, 0u);
+  EXPECT_NEAR(r.quality.min_scaled_jacobian, 1.0, 1e-12);
+}
+
+TEST(Pipeline, TenCubedBoxIsStructuredWithExactInteriorNodes) {
+  const MeshResult r = mesh_file(file_of(test::box_surface(10, 10, 10), "box10"));
+  EXPECT_EQ(r.mesh.complex.hexes.size(), 1000u);
+  EXPECT_EQ(r.mesh.complex.num_nodes - r.woven.num_input_nodes, 729u);
+  EXPECT_TRUE(r.validation.valid) << r.validation.summary();
+  // the harmonic position of a uniform grid is the grid itself
+  EXPECT_NEAR(r.quality.min_scaled_jacobian, 1.0, 1e-6);
+}
+
+TEST(Pipeline, InputNodesKeepTheirIdsAndCoordinates) {
+  const SurfaceMesh box = test::box_surface(3, 2, 2);
+  const MeshResult r = mesh_file(file_of(box, "box"));
+  ASSERT_GE(r.mesh.points.rows(), box.points.rows());
+  EXPECT_TRUE(r.mesh.points.topRows(box.points.rows()).isApprox(box.points, 0.0));
+}
+
+TEST(Pipeline, InwardSurfaceIsReorientedAndMeshed) {
+  const SurfaceMesh inward = test::reversed_surface(test::box_surface(2, 3, 4));
+  const MeshResult r = mesh_file(file_of(inward, "inward"));
+  EXPECT_EQ(r.orientation.flipped_quads, inward.surface.quads.size());
+  EXPECT_EQ(r.mesh.complex.hexes.size(), 24u);
+  EXPECT_EQ(r.quality.inverted, 0u);
+}
+
+TEST(Pipeline, SeedFigure5BarsAreValid) {
+  const std::vector<std::vector<std::array<int, 3>>> bars = {
+      {{0, 0, 0}, {0, 0, 1}, {0, 0, 2}},  // straight: 3 hexes
+      {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}},  // bent in a plane (L)
+      {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}},  // bent upward
+  };
+  for (const auto& cells : bars) {
+    const SurfaceMesh s = test::voxel_surface(cells);
+    ASSERT_EQ(s.surface.quads.size(), 14u);
+    const MeshResult r = mesh_file(file_of(s, "bar"));
+    EXPECT_TRUE(r.validation.valid) << r.validation.summary();
+    EXPECT_EQ(r.mesh.complex.hexes.size(), 3u);
+  }
+}
+
+TEST(Pipeline, TwoDisjointShellsAreBothMeshed) {
+  const SurfaceMesh a = test::box_surface(1, 1, 1);
+  SurfaceMesh both = a;
+  both.points.conservativeResize(16, 3);
+  both.points.bottomRows(8) = a.points.rowwise() + Eigen::RowVector3d(5, 0, 0);
+  for (auto q : a.surface.quads) {
+    for (auto& n : q) n = NodeId(n.value() + 8);
+    both.surface.quads.push_back(q);
+  }
+  both.surface.num_nodes = 16;
+  const MeshResult r = mesh_file(file_of(both, "two cubes"));
+  EXPECT_EQ(r.mesh.complex.hexes.size(), 2u);
+  EXPECT_TRUE(r.validation.valid) << r.validation.summary();
+}
+
+TEST(Pipeline, GenusOneIsUnsupportedWithAClearMessage) {
+  try {
+    (void)mesh_file(file_of(test::voxel_surface(test::ring_cells()), "ring.obj"));
+    FAIL() << "expected Unsupported";
+  } catch (const Unsupported& e) {
+    EXPECT_NE(std::string(e.what()).find("genus 1"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("ring.obj"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Pipeline, NestedShellsAreUnsupported) {
+  const SurfaceMesh outer = test::box_surface(3, 3, 3);
+  const SurfaceMesh inner = test::box_surface(1, 1, 1);
+  SurfaceMesh both = outer;
+  const auto n0 = outer.points.rows();
+  both.points.conservativeResize(n0 + 8, 3);
+  both.points.bottomRows(8) = inner.points.rowwise() + Eigen::RowVector3d(1, 1, 1);
+  for (auto q : inner.surface.quads) {
+    q = stc::reversed(q);  // a cavity faces the material
+    for (auto& n : q) n = NodeId(n.value() + static_cast<int>(n0));
+    both.surface.quads.push_back(q);
+  }
+  both.surface.num_nodes = static_cast<std::size_t>(n0 + 8);
+  try {
+    (void)mesh_file(file_of(both, "hollow"));
+    FAIL() << "expected Unsupported";
+  } catch (const Unsupported& e) {
+    EXPECT_NE(std::string(e.what()).find("nested"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Pipeline, OddQuadCountIsATopologyError) {
+  auto cube = test::box_surface(1, 1, 1);
+  cube.surface.quads.pop_back();  // open and odd
+  EXPECT_THROW((void)mesh_file(file_of(cube, "open")), TopologyError);
+}
+
+TEST(Pipeline, CheckModeKeepsTheFrontValidOnTheRhombicDodecahedron) {
+  MeshOptions options;
+  options.weave.check = true;
+  const MeshResult r = mesh_file(file_of(test::rhombic_dodecahedron(), "rd"), options);
+  EXPECT_TRUE(r.validation.valid) << r.validation.summary();
+  EXPECT_EQ(r.mesh.complex.hexes.size(), 4u);
+}
+
+}  // namespace
+}  // namespace stcweave::primal
