@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # stcweave developer entry point.
-#   ./dev.sh run   install what is missing, build (Release, in build/), mesh the bundled input
+#   ./dev.sh run   install what is missing, build (Release, in build/), mesh data/lblock.obj
 #   ./dev.sh test  install what is missing, build, run the whole test suite (ctest)
 #   ./dev.sh build install what is missing, build
 # Idempotent: a machine that already has everything only builds.
@@ -46,8 +46,10 @@ case "$cmd" in
     build ;;
   run)
     build
-    shift || true
-    exec "$BUILD_DIR/bin/stcweave" demo "$@" ;;
+    mkdir -p "$BUILD_DIR/out"
+    echo "dev.sh: meshing the bundled input data/lblock.obj"
+    "$BUILD_DIR/bin/stcweave" mesh data/lblock.obj -o "$BUILD_DIR/out/lblock.vtk" \
+      --report "$BUILD_DIR/out/lblock.report.json" ;;
   test)
     build
     cd "$BUILD_DIR"

@@ -101,8 +101,9 @@ int run_check(const CheckArgs& a) {
     j["boundary_compared"] = v.boundary_compared;
     nlohmann::json violations = nlohmann::json::array();
     for (const auto& viol : v.violations)
-      violations.push_back(
-          {{"invariant", std::string(viol.name())}, {"count", viol.count}, {"examples", viol.examples}});
+      violations.push_back({{"invariant", std::string(viol.name())},
+                            {"count", viol.count},
+                            {"examples", viol.examples}});
     j["violations"] = violations;
     j["euler_volume"] = v.euler_volume;
     j["euler_boundary"] = v.euler_boundary;

@@ -101,8 +101,8 @@ int run_mesh(const MeshArgs& a) {
                                         ? primal::format_from_path(a.output)
                                         : primal::format_from_name(a.output_format);
   const primal::MeshFile file = primal::read_mesh(
-      a.input, a.input_format == "auto" ? primal::Format::Auto
-                                        : primal::format_from_name(a.input_format));
+      a.input,
+      a.input_format == "auto" ? primal::Format::Auto : primal::format_from_name(a.input_format));
   const primal::MeshResult r = primal::mesh_file(file, options);
   const auto t0 = std::chrono::steady_clock::now();
   const stc::HexStc stc = stc::build_hex_stc(r.mesh.complex);
@@ -135,14 +135,22 @@ int run_mesh(const MeshArgs& a) {
                        {"inverted", r.quality.inverted},
                        {"below_0_2", r.quality.below_0_2}};
   const auto& s = r.woven.stats;
-  report["weave"] = {{"selections", s.selections},     {"shrinks", s.shrinks},
-                     {"failed_shrinks", s.failed_shrinks}, {"seams", s.seams},
-                     {"coincident_glues", s.coincident_glues}, {"crosses", s.crosses},
-                     {"blind_chords", s.blind_chords}, {"blocked_seams", s.blocked_seams}};
-  report["seconds"] = {{"diagnose", r.seconds.diagnose}, {"orient", r.seconds.orient},
-                       {"weave", r.seconds.weave},       {"validate", r.seconds.validate},
-                       {"recover", r.seconds.recover},   {"quality", r.seconds.quality},
-                       {"stc", stc_seconds},             {"write", write_seconds},
+  report["weave"] = {{"selections", s.selections},
+                     {"shrinks", s.shrinks},
+                     {"failed_shrinks", s.failed_shrinks},
+                     {"seams", s.seams},
+                     {"coincident_glues", s.coincident_glues},
+                     {"crosses", s.crosses},
+                     {"blind_chords", s.blind_chords},
+                     {"blocked_seams", s.blocked_seams}};
+  report["seconds"] = {{"diagnose", r.seconds.diagnose},
+                       {"orient", r.seconds.orient},
+                       {"weave", r.seconds.weave},
+                       {"validate", r.seconds.validate},
+                       {"recover", r.seconds.recover},
+                       {"quality", r.seconds.quality},
+                       {"stc", stc_seconds},
+                       {"write", write_seconds},
                        {"total", r.seconds.total() + stc_seconds + write_seconds}};
 
   if (!a.report.empty()) write_text_atomically(a.report, report.dump(1) + "\n");

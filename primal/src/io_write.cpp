@@ -1,1 +1,350 @@
-// PLACEHOLDER: being written (must be replaced before commit)
+/// \file
+/// Mesh writers. Each writer formats the whole file in memory (numbers with `%.17g`, so the
+/// output is byte-for-byte deterministic and doubles read back exactly), writes it to a
+/// temporary file in the target's folder and renames it over the target: a failure never
+/// leaves a truncated file in place of a good one.
+
+#include <array>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <random>
+#include <string>
+#include <string_view>
+
+#include "stcweave/primal/io.hpp"
+#include "stcweave/stc/errors.hpp"
+
+namespace stcweave::primal {
+
+namespace {
+
+/// Appends formatted text to a string.
+class Out {
+ public:
+  Out& operator<<(std::string_view s) {
+    text_.append(s);
+    return *this;
+  }
+  Out& operator<<(char c) {
+    text_.push_back(c);
+    return *this;
+  }
+  /// An integer, in decimal.
+  Out& integer(long long v) {
+    std::array<char, 24> buf{};
+    const int n = std::snprintf(buf.data(), buf.size(), "%lld", v);
+    text_.append(buf.data(), static_cast<std::size_t>(n));
+    return *this;
+  }
+  /// A real with `%.17g`.
+  Out& real(double v) {
+    std::array<char, 40> buf{};
+    const int n = std::snprintf(buf.data(), buf.size(), "%.17g", v);
+    text_.append(buf.data(), static_cast<std::size_t>(n));
+    return *this;
+  }
+  /// `x y z` of row `i` of `points`.
+  Out& point(const Points& points, Eigen::Index i, char separator = ' ') {
+    real(points(i, 0)) << separator;
+    real(points(i, 1)) << separator;
+    return real(points(i, 2));
+  }
+  [[nodiscard]] const std::string& text() const { return text_; }
+
+ private:
+  std::string text_;
+};
+
+/// Checks that every node id in `cells` is a row of `points`.
+template <class Cells>
+void check_nodes(const Cells& cells, const Points& points, std::string_view kind,
+                 const std::filesystem::path& path) {
+  for (std::size_t c = 0; c < cells.size(); ++c)
+    for (const NodeId v : cells[c])
+      if (!v.is_valid() || v.value() >= points.rows())
+        throw InvalidInput("cannot write " + path.string() + ": " + std::string(kind) + " " +
+                           std::to_string(c) + " uses node " + v.str() + " but the mesh has " +
+                           std::to_string(points.rows()) +
+                           " points; the mesh is inconsistent (a bug in the caller)");
+}
+
+/// Writes `text` to `path` through a temporary file in the same folder + rename.
+void commit(const std::filesystem::path& path, const std::string& text) {
+  const std::filesystem::path folder =
+      path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  std::random_device random;
+  const std::string suffix = std::to_string(random()) + std::to_string(random());
+  std::string tmp_name(1, '.');  // built piecewise: GCC 12 warns (-Wrestrict) on "." + s
+  tmp_name += path.filename().string();
+  tmp_name += ".tmp";
+  tmp_name += suffix.substr(0, 12);
+  const std::filesystem::path tmp = folder / tmp_name;
+  std::FILE* f = std::fopen(tmp.string().c_str(), "wb");
+  if (f == nullptr)
+    throw IoError("cannot write " + path.string() + ": cannot create a file in " + folder.string() +
+                  " (" + std::strerror(errno) + "); check that the folder exists and is writable");
+  const std::size_t written = std::fwrite(text.data(), 1, text.size(), f);
+  const bool flushed = std::fflush(f) == 0;
+  const int saved_errno = errno;
+  const bool closed = std::fclose(f) == 0;
+  std::error_code ec;
+  if (written != text.size() || !flushed || !closed) {
+    std::filesystem::remove(tmp, ec);
+    throw IoError("cannot write " + path.string() + ": " + std::strerror(saved_errno) +
+                  "; check the free space and permissions (the previous file is untouched)");
+  }
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw IoError("cannot write " + path.string() + ": cannot replace it (" + ec.message() +
+                  "); check permissions, or that it is not a folder");
+  }
+}
+
+std::string vtk_hex(const HexMesh& mesh) {
+  Out o;
+  const auto n = mesh.points.rows();
+  const std::size_t m = mesh.complex.hexes.size();
+  o << "# vtk DataFile Version 4.2\nstcweave hex mesh\nASCII\nDATASET UNSTRUCTURED_GRID\n";
+  o << "POINTS ";
+  o.integer(n) << " double\n";
+  for (Eigen::Index i = 0; i < n; ++i) o.point(mesh.points, i) << '\n';
+  o << "CELLS ";
+  o.integer(static_cast<long long>(m)) << ' ';
+  o.integer(static_cast<long long>(9 * m)) << '\n';
+  for (const auto& h : mesh.complex.hexes) {
+    o << '8';
+    for (const NodeId v : h) o << ' ', o.integer(v.value());
+    o << '\n';
+  }
+  o << "CELL_TYPES ";
+  o.integer(static_cast<long long>(m)) << '\n';
+  for (std::size_t c = 0; c < m; ++c) o << "12\n";
+  return o.text();
+}
+
+std::string vtu_hex(const HexMesh& mesh) {
+  Out o;
+  const auto n = mesh.points.rows();
+  const std::size_t m = mesh.complex.hexes.size();
+  o << "<?xml version=\"1.0\"?>\n"
+       "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+       "  <UnstructuredGrid>\n"
+       "    <Piece NumberOfPoints=\"";
+  o.integer(n) << "\" NumberOfCells=\"";
+  o.integer(static_cast<long long>(m)) << "\">\n";
+  o << "      <Points>\n"
+       "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (Eigen::Index i = 0; i < n; ++i) o.point(mesh.points, i) << '\n';
+  o << "        </DataArray>\n      </Points>\n      <Cells>\n"
+       "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+  for (const auto& h : mesh.complex.hexes) {
+    for (std::size_t k = 0; k < 8; ++k) {
+      if (k > 0) o << ' ';
+      o.integer(h[k].value());
+    }
+    o << '\n';
+  }
+  o << "        </DataArray>\n"
+       "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+  for (std::size_t c = 0; c < m; ++c) o.integer(static_cast<long long>(8 * (c + 1))) << '\n';
+  o << "        </DataArray>\n"
+       "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+  for (std::size_t c = 0; c < m; ++c) o << "12\n";
+  o << "        </DataArray>\n      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n"
+       "</VTKFile>\n";
+  return o.text();
+}
+
+std::string msh41_hex(const HexMesh& mesh) {
+  Out o;
+  const auto n = mesh.points.rows();
+  const auto m = static_cast<long long>(mesh.complex.hexes.size());
+  o << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n";
+  if (n == 0) {
+    o << "0 0 0 0\n";
+  } else {
+    o << "1 ";
+    o.integer(n) << " 1 ";
+    o.integer(n) << "\n3 1 0 ";
+    o.integer(n) << '\n';
+    for (Eigen::Index i = 0; i < n; ++i) o.integer(i + 1) << '\n';
+    for (Eigen::Index i = 0; i < n; ++i) o.point(mesh.points, i) << '\n';
+  }
+  o << "$EndNodes\n$Elements\n";
+  if (m == 0) {
+    o << "0 0 0 0\n";
+  } else {
+    o << "1 ";
+    o.integer(m) << " 1 ";
+    o.integer(m) << "\n3 1 5 ";
+    o.integer(m) << '\n';
+    long long tag = 0;
+    for (const auto& h : mesh.complex.hexes) {
+      o.integer(++tag);
+      for (const NodeId v : h) o << ' ', o.integer(v.value() + 1);
+      o << '\n';
+    }
+  }
+  o << "$EndElements\n";
+  return o.text();
+}
+
+std::string msh22_hex(const HexMesh& mesh) {
+  Out o;
+  const auto n = mesh.points.rows();
+  o << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n";
+  o.integer(n) << '\n';
+  for (Eigen::Index i = 0; i < n; ++i) o.integer(i + 1) << ' ', o.point(mesh.points, i) << '\n';
+  o << "$EndNodes\n$Elements\n";
+  o.integer(static_cast<long long>(mesh.complex.hexes.size())) << '\n';
+  long long tag = 0;
+  for (const auto& h : mesh.complex.hexes) {
+    o.integer(++tag) << " 5 2 0 1";
+    for (const NodeId v : h) o << ' ', o.integer(v.value() + 1);
+    o << '\n';
+  }
+  o << "$EndElements\n";
+  return o.text();
+}
+
+std::string medit_hex(const HexMesh& mesh) {
+  Out o;
+  const auto n = mesh.points.rows();
+  o << "MeshVersionFormatted 2\n\nDimension 3\n\nVertices\n";
+  o.integer(n) << '\n';
+  for (Eigen::Index i = 0; i < n; ++i) o.point(mesh.points, i) << " 0\n";
+  o << "\nHexahedra\n";
+  o.integer(static_cast<long long>(mesh.complex.hexes.size())) << '\n';
+  for (const auto& h : mesh.complex.hexes) {
+    for (const NodeId v : h) o.integer(v.value() + 1) << ' ';
+    o << "0\n";
+  }
+  o << "\nEnd\n";
+  return o.text();
+}
+
+std::string inp_hex(const HexMesh& mesh) {
+  Out o;
+  const auto n = mesh.points.rows();
+  o << "*Heading\n stcweave hex mesh\n*NODE\n";
+  for (Eigen::Index i = 0; i < n; ++i) {
+    o.integer(i + 1) << ", ";
+    o.real(mesh.points(i, 0)) << ", ";
+    o.real(mesh.points(i, 1)) << ", ";
+    o.real(mesh.points(i, 2)) << '\n';
+  }
+  o << "*ELEMENT, TYPE=C3D8, ELSET=Volume1\n";
+  long long tag = 0;
+  for (const auto& h : mesh.complex.hexes) {
+    o.integer(++tag);
+    for (const NodeId v : h) o << ", ", o.integer(v.value() + 1);
+    o << '\n';
+  }
+  return o.text();
+}
+
+std::string obj_surface(const SurfaceMesh& mesh) {
+  Out o;
+  o << "# stcweave quad surface\n";
+  for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) o << "v ", o.point(mesh.points, i) << '\n';
+  for (const auto& q : mesh.surface.quads) {
+    o << 'f';
+    for (const NodeId v : q) o << ' ', o.integer(v.value() + 1);
+    o << '\n';
+  }
+  return o.text();
+}
+
+std::string off_surface(const SurfaceMesh& mesh) {
+  Out o;
+  o << "OFF\n";
+  o.integer(mesh.points.rows()) << ' ';
+  o.integer(static_cast<long long>(mesh.surface.quads.size())) << " 0\n";
+  for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) o.point(mesh.points, i) << '\n';
+  for (const auto& q : mesh.surface.quads) {
+    o << '4';
+    for (const NodeId v : q) o << ' ', o.integer(v.value());
+    o << '\n';
+  }
+  return o.text();
+}
+
+std::string vtk_surface(const SurfaceMesh& mesh) {
+  Out o;
+  const auto m = static_cast<long long>(mesh.surface.quads.size());
+  o << "# vtk DataFile Version 4.2\nstcweave quad surface\nASCII\nDATASET POLYDATA\nPOINTS ";
+  o.integer(mesh.points.rows()) << " double\n";
+  for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) o.point(mesh.points, i) << '\n';
+  o << "POLYGONS ";
+  o.integer(m) << ' ';
+  o.integer(5 * m) << '\n';
+  for (const auto& q : mesh.surface.quads) {
+    o << '4';
+    for (const NodeId v : q) o << ' ', o.integer(v.value());
+    o << '\n';
+  }
+  return o.text();
+}
+
+}  // namespace
+
+void write_hex_mesh(const HexMesh& mesh, const std::filesystem::path& path, Format format) {
+  if (format == Format::Auto) format = format_from_path(path);
+  check_nodes(mesh.complex.hexes, mesh.points, "hex", path);
+  std::string text;
+  switch (format) {
+    case Format::Vtk:
+      text = vtk_hex(mesh);
+      break;
+    case Format::Vtu:
+      text = vtu_hex(mesh);
+      break;
+    case Format::Msh:
+      text = msh41_hex(mesh);
+      break;
+    case Format::Msh2:
+      text = msh22_hex(mesh);
+      break;
+    case Format::Medit:
+      text = medit_hex(mesh);
+      break;
+    case Format::Inp:
+      text = inp_hex(mesh);
+      break;
+    case Format::Auto:
+    case Format::Obj:
+    case Format::Off:
+    case Format::Mfem:
+      throw InvalidInput("cannot write " + path.string() + " as " +
+                         std::string(format_name(format)) +
+                         ": a hex mesh is written as vtk, vtu, msh, msh2, mesh or inp");
+  }
+  commit(path, text);
+}
+
+void write_surface(const SurfaceMesh& mesh, const std::filesystem::path& path, Format format) {
+  if (format == Format::Auto) format = format_from_path(path);
+  check_nodes(mesh.surface.quads, mesh.points, "quad", path);
+  std::string text;
+  switch (format) {
+    case Format::Obj:
+      text = obj_surface(mesh);
+      break;
+    case Format::Off:
+      text = off_surface(mesh);
+      break;
+    case Format::Vtk:
+      text = vtk_surface(mesh);
+      break;
+    default:
+      throw InvalidInput("cannot write the surface " + path.string() + " as " +
+                         std::string(format_name(format)) +
+                         ": a quad surface is written as obj, off or vtk");
+  }
+  commit(path, text);
+}
+
+}  // namespace stcweave::primal

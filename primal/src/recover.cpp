@@ -32,7 +32,9 @@ HarmonicReport harmonic_positions(HexMesh& mesh, std::size_t num_fixed) {
   std::vector<Triplet> triplets;
   Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Zero(static_cast<Eigen::Index>(free), 3);
   std::vector<double> degree(free, 0.0);
-  const auto k = [&](std::int32_t node) { return static_cast<Eigen::Index>(node) - static_cast<Eigen::Index>(num_fixed); };
+  const auto k = [&](std::int32_t node) {
+    return static_cast<Eigen::Index>(node) - static_cast<Eigen::Index>(num_fixed);
+  };
   for (const auto& [a, b] : edges) {
     const bool fa = static_cast<std::size_t>(a) < num_fixed;
     const bool fb = static_cast<std::size_t>(b) < num_fixed;
@@ -58,21 +60,25 @@ HarmonicReport harmonic_positions(HexMesh& mesh, std::size_t num_fixed) {
   const Eigen::RowVector3d centre =
       mesh.points.topRows(static_cast<Eigen::Index>(num_fixed)).colwise().mean();
   guess.rowwise() = centre;
-  Eigen::SparseMatrix<double> laplacian(static_cast<Eigen::Index>(free), static_cast<Eigen::Index>(free));
+  Eigen::SparseMatrix<double> laplacian(static_cast<Eigen::Index>(free),
+                                        static_cast<Eigen::Index>(free));
   laplacian.setFromTriplets(triplets.begin(), triplets.end());
   Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg;
   cg.setTolerance(1e-10);
   cg.setMaxIterations(std::max<Eigen::Index>(1000, 20 * static_cast<Eigen::Index>(free)));
   cg.compute(laplacian);
-  if (cg.info() != Eigen::Success) throw SolverError("harmonic placement: cannot set up the solver");
+  if (cg.info() != Eigen::Success)
+    throw SolverError("harmonic placement: cannot set up the solver");
   for (int c = 0; c < 3; ++c) {
     const Eigen::VectorXd x = cg.solveWithGuess(rhs.col(c), guess.col(c));
     if (cg.info() != Eigen::Success)
       throw SolverError("harmonic placement did not converge (" + std::to_string(cg.iterations()) +
                         " iterations, residual " + std::to_string(cg.error()) +
                         "): some interior nodes may be cut off from the boundary");
-    mesh.points.block(static_cast<Eigen::Index>(num_fixed), c, static_cast<Eigen::Index>(free), 1) = x;
-    report.iterations = std::max<std::size_t>(report.iterations, static_cast<std::size_t>(cg.iterations()));
+    mesh.points.block(static_cast<Eigen::Index>(num_fixed), c, static_cast<Eigen::Index>(free), 1) =
+        x;
+    report.iterations =
+        std::max<std::size_t>(report.iterations, static_cast<std::size_t>(cg.iterations()));
     report.residual = std::max(report.residual, cg.error());
   }
   return report;

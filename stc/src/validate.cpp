@@ -1,1 +1,503 @@
-// PLACEHOLDER: being written (must be replaced before commit)
+#include "stcweave/stc/validate.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <sstream>
+
+#include "stcweave/stc/errors.hpp"
+
+/// How the complex is validated, and why it is linear-ish.
+///
+/// Faces and edges are matched once by sorting their node keys (deterministic, no hash
+/// order). The face match gives, for every hex face, the hex face on its other side, which
+/// is all the edge-fan walk needs: around an edge, leave a hex through the other face of
+/// that hex containing the edge, and count the hexes met before coming back (interior
+/// edge) or before reaching the second boundary face (boundary edge); the fan is right iff
+/// every hex at the edge is met. Vertex links: the link of a node is the triangulated
+/// surface with one vertex per edge at the node, one edge per face, one triangle per hex;
+/// a union-find over hex corners glued through shared faces gives its components, and its
+/// Euler characteristic is #edges − #faces + #hexes at the node. Once the edge fans are
+/// right the link is a surface, so "one component and χ = 2 (interior) or 1 (boundary)"
+/// means a sphere or a disk.
+
+namespace stcweave::stc {
+namespace {
+
+constexpr std::array<std::array<int, 8>, 8> make_local_edge_table() {
+  std::array<std::array<int, 8>, 8> t{};
+  for (auto& row : t) row.fill(-1);
+  for (int k = 0; k < 12; ++k) {
+    const auto [a, b] = kHexEdges[static_cast<std::size_t>(k)];
+    t[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)] = k;
+    t[static_cast<std::size_t>(b)][static_cast<std::size_t>(a)] = k;
+  }
+  return t;
+}
+constexpr auto kLocalEdge = make_local_edge_table();
+
+/// kEdgeFaces[k]: the two faces of a hex containing its local edge k.
+constexpr std::array<std::array<int, 2>, 12> make_edge_faces() {
+  std::array<std::array<int, 2>, 12> t{};
+  std::array<int, 12> n{};
+  for (int f = 0; f < 6; ++f) {
+    for (int s = 0; s < 4; ++s) {
+      const auto& face = kHexFaces[static_cast<std::size_t>(f)];
+      const int k =
+          kLocalEdge[static_cast<std::size_t>(face[static_cast<std::size_t>(s)])]
+                    [static_cast<std::size_t>(face[static_cast<std::size_t>((s + 1) % 4)])];
+      t[static_cast<std::size_t>(k)][static_cast<std::size_t>(n[static_cast<std::size_t>(k)]++)] =
+          f;
+    }
+  }
+  return t;
+}
+constexpr auto kEdgeFaces = make_edge_faces();
+
+/// kFaceEdges[f]: the four local edges of face f.
+constexpr std::array<std::array<int, 4>, 6> make_face_edges() {
+  std::array<std::array<int, 4>, 6> t{};
+  for (std::size_t f = 0; f < 6; ++f)
+    for (std::size_t s = 0; s < 4; ++s)
+      t[f][s] = kLocalEdge[static_cast<std::size_t>(kHexFaces[f][s])]
+                          [static_cast<std::size_t>(kHexFaces[f][(s + 1) % 4])];
+  return t;
+}
+constexpr auto kFaceEdges = make_face_edges();
+
+class UnionFind {
+ public:
+  explicit UnionFind(std::size_t n) : parent_(n) {
+    std::iota(parent_.begin(), parent_.end(), std::uint32_t{0});
+  }
+  std::uint32_t find(std::uint32_t x) {
+    while (parent_[x] != x) {
+      parent_[x] = parent_[parent_[x]];
+      x = parent_[x];
+    }
+    return x;
+  }
+  void unite(std::uint32_t a, std::uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+  }
+
+ private:
+  std::vector<std::uint32_t> parent_;
+};
+
+/// `b` is a rotation of `a`.
+bool same_cycle(const Quad& a, const Quad& b) {
+  for (std::size_t r = 0; r < 4; ++r) {
+    if (b[r] != a[0]) continue;
+    for (std::size_t i = 1; i < 4; ++i)
+      if (b[(r + i) % 4] != a[i]) return false;
+    return true;
+  }
+  return false;
+}
+
+using FaceKey = std::array<std::int32_t, 4>;
+
+FaceKey face_key(const Quad& q) {
+  FaceKey k{q[0].value(), q[1].value(), q[2].value(), q[3].value()};
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
+/// Collects the offending elements of one invariant.
+class Collector {
+ public:
+  explicit Collector(Invariant invariant) { violation_.invariant = invariant; }
+  void add(const std::string& example) {
+    if (violation_.examples.size() < Violation::kMaxExamples)
+      violation_.examples.push_back(example);
+    ++violation_.count;
+  }
+  void flush(ValidationReport& report) {
+    if (violation_.count == 0) return;
+    report.valid = false;
+    report.violations.push_back(std::move(violation_));
+  }
+
+ private:
+  Violation violation_;
+};
+
+std::string face_slot_str(std::size_t slot) {
+  return HexId(slot / 6).str() + ".f" + std::to_string(slot % 6);
+}
+
+}  // namespace
+
+std::string_view invariant_name(Invariant invariant) {
+  switch (invariant) {
+    case Invariant::NodeOutOfRange:
+      return "node_out_of_range";
+    case Invariant::RepeatedNode:
+      return "repeated_node";
+    case Invariant::FaceInThreeHexes:
+      return "face_in_three_hexes";
+    case Invariant::HexesShareTwoFaces:
+      return "hexes_share_two_faces";
+    case Invariant::FaceOrientation:
+      return "face_orientation";
+    case Invariant::InteriorEdgeCycle:
+      return "interior_edge_cycle";
+    case Invariant::BoundaryEdgeFan:
+      return "boundary_edge_fan";
+    case Invariant::VertexLink:
+      return "vertex_link";
+    case Invariant::MissingBoundaryQuad:
+      return "missing_boundary_quad";
+    case Invariant::ExtraBoundaryQuad:
+      return "extra_boundary_quad";
+    case Invariant::ReversedBoundaryQuad:
+      return "reversed_boundary_quad";
+    case Invariant::EulerCharacteristic:
+      return "euler_characteristic";
+  }
+  return "unknown_invariant";
+}
+
+const Violation* ValidationReport::find(Invariant invariant) const {
+  for (const Violation& v : violations)
+    if (v.invariant == invariant) return &v;
+  return nullptr;
+}
+
+std::string ValidationReport::summary() const {
+  std::ostringstream out;
+  if (valid) {
+    out << "valid hex complex: " << hexes << " hexes, " << nodes << " nodes, " << edges
+        << " edges, " << faces << " faces (" << boundary_faces
+        << " on the boundary), chi(volume)=" << euler_volume << " chi(boundary)=" << euler_boundary
+        << (boundary_compared ? ", boundary as expected" : "");
+    return out.str();
+  }
+  out << "invalid hex complex (" << hexes << " hexes): " << violations.size()
+      << " invariant(s) violated";
+  for (const Violation& v : violations) {
+    out << "\n  " << v.name() << ": " << v.count << " (";
+    for (std::size_t i = 0; i < v.examples.size(); ++i) out << (i ? " " : "") << v.examples[i];
+    if (v.count > v.examples.size()) out << " ...";
+    out << ")";
+  }
+  return out.str();
+}
+
+ValidationReport validate_hex_complex(const HexComplex& complex,
+                                      const QuadSurface* expected_boundary) {
+  ValidationReport report;
+  const std::size_t num_hexes = complex.hexes.size();
+  const std::size_t num_nodes = complex.num_nodes;
+  report.hexes = num_hexes;
+
+  // 1. Nodes.
+  std::vector<bool> good(num_hexes, true);
+  {
+    Collector out_of_range(Invariant::NodeOutOfRange);
+    Collector repeated(Invariant::RepeatedNode);
+    for (std::size_t h = 0; h < num_hexes; ++h) {
+      const Hex& hex = complex.hexes[h];
+      bool bad_range = false;
+      bool bad_repeat = false;
+      for (std::size_t i = 0; i < 8; ++i) {
+        if (!hex[i].is_valid() || hex[i].index() >= num_nodes) bad_range = true;
+        for (std::size_t j = 0; j < i; ++j)
+          if (hex[i] == hex[j]) bad_repeat = true;
+      }
+      if (bad_range) out_of_range.add(HexId(h).str());
+      if (bad_repeat) repeated.add(HexId(h).str());
+      good[h] = !bad_range && !bad_repeat;
+    }
+    out_of_range.flush(report);
+    repeated.flush(report);
+  }
+
+  // 2. Faces, matched by sorted node keys: CSR of slots (6h+f) per face.
+  constexpr std::uint32_t kNone = ~std::uint32_t{0};
+  std::vector<std::uint32_t> face_of_slot(6 * num_hexes, kNone);
+  std::vector<FaceKey> face_keys;
+  std::vector<std::uint32_t> face_begin;
+  std::vector<std::uint32_t> face_slots;
+  {
+    std::vector<std::pair<FaceKey, std::uint32_t>> entries;
+    entries.reserve(6 * num_hexes);
+    for (std::size_t h = 0; h < num_hexes; ++h)
+      if (good[h])
+        for (int f = 0; f < 6; ++f)
+          entries.emplace_back(face_key(hex_face(complex.hexes[h], f)),
+                               static_cast<std::uint32_t>(6 * h + static_cast<std::size_t>(f)));
+    std::sort(entries.begin(), entries.end());
+    face_slots.reserve(entries.size());
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+      if (i == 0 || entries[i].first != entries[i - 1].first) {
+        face_keys.push_back(entries[i].first);
+        face_begin.push_back(static_cast<std::uint32_t>(i));
+      }
+      face_slots.push_back(entries[i].second);
+      face_of_slot[entries[i].second] = static_cast<std::uint32_t>(face_keys.size() - 1);
+    }
+    face_begin.push_back(static_cast<std::uint32_t>(entries.size()));
+  }
+  const std::size_t num_faces = face_keys.size();
+  const auto face_count = [&](std::uint32_t f) { return face_begin[f + 1] - face_begin[f]; };
+  const auto slot_count = [&](std::size_t slot) { return face_count(face_of_slot[slot]); };
+  const auto neighbour = [&](std::size_t slot) -> std::size_t {
+    const std::uint32_t f = face_of_slot[slot];
+    const std::uint32_t a = face_slots[face_begin[f]];
+    return a == slot ? face_slots[face_begin[f] + 1] : a;
+  };
+  report.faces = num_faces;
+
+  {
+    Collector three(Invariant::FaceInThreeHexes);
+    Collector orientation(Invariant::FaceOrientation);
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    for (std::uint32_t f = 0; f < num_faces; ++f) {
+      const std::uint32_t n = face_count(f);
+      if (n == 1) ++report.boundary_faces;
+      if (n > 2) {
+        std::string example;
+        for (std::uint32_t i = face_begin[f]; i < face_begin[f + 1]; ++i) {
+          if (i > face_begin[f]) example += '+';
+          example += HexId(std::size_t{face_slots[i] / 6}).str();
+        }
+        three.add(example);
+      }
+      if (n != 2) continue;
+      const std::uint32_t s1 = face_slots[face_begin[f]];
+      const std::uint32_t s2 = face_slots[face_begin[f] + 1];
+      pairs.emplace_back(s1 / 6, s2 / 6);
+      const Quad q1 = hex_face(complex.hexes[s1 / 6], static_cast<int>(s1 % 6));
+      const Quad q2 = hex_face(complex.hexes[s2 / 6], static_cast<int>(s2 % 6));
+      if (!same_cycle(q1, reversed(q2)))
+        orientation.add(face_slot_str(s1) + "+" + face_slot_str(s2));
+    }
+    three.flush(report);
+    std::sort(pairs.begin(), pairs.end());
+    Collector share(Invariant::HexesShareTwoFaces);
+    for (std::size_t i = 1; i < pairs.size(); ++i)
+      if (pairs[i] == pairs[i - 1] && (i < 2 || pairs[i - 2] != pairs[i]))
+        share.add(HexId(std::size_t{pairs[i].first}).str() + "+" +
+                  HexId(std::size_t{pairs[i].second}).str());
+    share.flush(report);
+    orientation.flush(report);
+  }
+
+  // 3. Edges, matched by sorted node pairs: CSR of slots (12h+k) per edge.
+  std::vector<std::uint32_t> edge_of_slot(12 * num_hexes, kNone);
+  std::vector<std::uint32_t> edge_begin;
+  std::vector<std::uint32_t> edge_slots;
+  std::vector<std::uint64_t> edge_keys;
+  {
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> entries;
+    entries.reserve(12 * num_hexes);
+    for (std::size_t h = 0; h < num_hexes; ++h) {
+      if (!good[h]) continue;
+      for (std::size_t k = 0; k < 12; ++k) {
+        auto u = static_cast<std::uint64_t>(
+            complex.hexes[h][static_cast<std::size_t>(kHexEdges[k][0])].value());
+        auto v = static_cast<std::uint64_t>(
+            complex.hexes[h][static_cast<std::size_t>(kHexEdges[k][1])].value());
+        if (u > v) std::swap(u, v);
+        entries.emplace_back((u << 32) | v, static_cast<std::uint32_t>(12 * h + k));
+      }
+    }
+    std::sort(entries.begin(), entries.end());
+    edge_slots.reserve(entries.size());
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+      if (i == 0 || entries[i].first != entries[i - 1].first) {
+        edge_keys.push_back(entries[i].first);
+        edge_begin.push_back(static_cast<std::uint32_t>(i));
+      }
+      edge_slots.push_back(entries[i].second);
+      edge_of_slot[entries[i].second] = static_cast<std::uint32_t>(edge_keys.size() - 1);
+    }
+    edge_begin.push_back(static_cast<std::uint32_t>(entries.size()));
+  }
+  const std::size_t num_edges = edge_keys.size();
+  report.edges = num_edges;
+  const auto edge_str = [&](std::size_t e) {
+    return NodeId(static_cast<std::int32_t>(edge_keys[e] >> 32)).str() + "-" +
+           NodeId(static_cast<std::int32_t>(edge_keys[e] & 0xffffffffU)).str();
+  };
+
+  // 4. Edge cycles and fans.
+  std::vector<bool> edge_on_boundary(num_edges, false);
+  {
+    Collector cycle(Invariant::InteriorEdgeCycle);
+    Collector fan(Invariant::BoundaryEdgeFan);
+    const auto local_edge_of = [&](std::size_t h, std::uint32_t e) -> std::size_t {
+      for (std::size_t k = 0; k < 12; ++k)
+        if (edge_of_slot[12 * h + k] == e) return k;
+      throw InternalError("validate: edge not found in its hex");
+    };
+    for (std::uint32_t e = 0; e < num_edges; ++e) {
+      const std::uint32_t n = edge_begin[e + 1] - edge_begin[e];
+      std::uint32_t boundary = 0;
+      std::uint32_t nonmanifold = 0;
+      std::size_t start_slot = 0;
+      int start_face = -1;
+      for (std::uint32_t i = edge_begin[e]; i < edge_begin[e + 1]; ++i) {
+        const std::size_t h = edge_slots[i] / 12;
+        const std::size_t k = edge_slots[i] % 12;
+        for (int f : kEdgeFaces[k]) {
+          const std::uint32_t c = slot_count(6 * h + static_cast<std::size_t>(f));
+          if (c == 1) {
+            ++boundary;
+            if (start_face < 0) {
+              start_slot = edge_slots[i];
+              start_face = f;
+            }
+          }
+          if (c > 2) ++nonmanifold;
+        }
+      }
+      if (boundary > 0) edge_on_boundary[e] = true;
+      bool ok = nonmanifold == 0 && (boundary == 0 || boundary == 2);
+      if (ok) {
+        // Walk around the edge through shared faces.
+        std::size_t h = (boundary == 0 ? edge_slots[edge_begin[e]] : start_slot) / 12;
+        std::size_t k = (boundary == 0 ? edge_slots[edge_begin[e]] : start_slot) % 12;
+        const std::size_t h0 = h;
+        int in_face = boundary == 0 ? kEdgeFaces[k][1] : start_face;
+        std::uint32_t visited = 0;
+        ok = false;
+        while (visited <= n) {
+          ++visited;
+          const int out_face = kEdgeFaces[k][0] == in_face ? kEdgeFaces[k][1] : kEdgeFaces[k][0];
+          const std::size_t out_slot = 6 * h + static_cast<std::size_t>(out_face);
+          if (slot_count(out_slot) == 1) {
+            ok = boundary == 2 && visited == n;
+            break;
+          }
+          const std::size_t next = neighbour(out_slot);
+          h = next / 6;
+          in_face = static_cast<int>(next % 6);
+          k = local_edge_of(h, e);
+          if (h == h0) {
+            ok = boundary == 0 && visited == n;
+            break;
+          }
+        }
+      }
+      if (!ok) (boundary == 0 && nonmanifold == 0 ? cycle : fan).add(edge_str(e));
+    }
+    cycle.flush(report);
+    fan.flush(report);
+  }
+
+  // 5. Vertex links.
+  {
+    UnionFind corners(8 * num_hexes);
+    for (std::uint32_t f = 0; f < num_faces; ++f) {
+      if (face_count(f) != 2) continue;
+      const std::uint32_t s1 = face_slots[face_begin[f]];
+      const std::uint32_t s2 = face_slots[face_begin[f] + 1];
+      const std::size_t h1 = s1 / 6;
+      const std::size_t h2 = s2 / 6;
+      for (int i : kHexFaces[s1 % 6]) {
+        const NodeId v = complex.hexes[h1][static_cast<std::size_t>(i)];
+        for (std::size_t j = 0; j < 8; ++j)
+          if (complex.hexes[h2][j] == v)
+            corners.unite(static_cast<std::uint32_t>(8 * h1 + static_cast<std::size_t>(i)),
+                          static_cast<std::uint32_t>(8 * h2 + j));
+      }
+    }
+    std::vector<std::int64_t> chi(num_nodes, 0);
+    std::vector<std::uint32_t> components(num_nodes, 0);
+    std::vector<bool> used(num_nodes, false);
+    std::vector<bool> on_boundary(num_nodes, false);
+    for (std::size_t h = 0; h < num_hexes; ++h) {
+      if (!good[h]) continue;
+      for (std::size_t i = 0; i < 8; ++i) {
+        const std::size_t v = complex.hexes[h][i].index();
+        used[v] = true;
+        chi[v] += 1;  // a triangle of the link
+        if (corners.find(static_cast<std::uint32_t>(8 * h + i)) == 8 * h + i) ++components[v];
+      }
+    }
+    for (std::uint32_t e = 0; e < num_edges; ++e) {
+      chi[edge_keys[e] >> 32] += 1;  // a vertex of the link
+      chi[edge_keys[e] & 0xffffffffU] += 1;
+    }
+    for (std::uint32_t f = 0; f < num_faces; ++f) {
+      for (std::int32_t v : face_keys[f]) {
+        chi[static_cast<std::size_t>(v)] -= 1;  // an edge of the link
+        if (face_count(f) == 1) on_boundary[static_cast<std::size_t>(v)] = true;
+      }
+    }
+    Collector link(Invariant::VertexLink);
+    for (std::size_t v = 0; v < num_nodes; ++v) {
+      if (!used[v]) continue;
+      ++report.nodes;
+      if (components[v] != 1 || chi[v] != (on_boundary[v] ? 1 : 2)) link.add(NodeId(v).str());
+    }
+    link.flush(report);
+
+    // χ of the volume and of the boundary (faces used once).
+    std::int64_t boundary_nodes = 0;
+    for (std::size_t v = 0; v < num_nodes; ++v) boundary_nodes += on_boundary[v] ? 1 : 0;
+    std::int64_t boundary_edges = 0;
+    for (std::uint32_t e = 0; e < num_edges; ++e) boundary_edges += edge_on_boundary[e] ? 1 : 0;
+    std::int64_t good_hexes = 0;
+    for (std::size_t h = 0; h < num_hexes; ++h) good_hexes += good[h] ? 1 : 0;
+    report.euler_volume = static_cast<std::int64_t>(report.nodes) -
+                          static_cast<std::int64_t>(num_edges) +
+                          static_cast<std::int64_t>(num_faces) - good_hexes;
+    report.euler_boundary =
+        boundary_nodes - boundary_edges + static_cast<std::int64_t>(report.boundary_faces);
+  }
+
+  // 6. The boundary against the expected quads.
+  if (expected_boundary != nullptr) {
+    report.boundary_compared = true;
+    Collector missing(Invariant::MissingBoundaryQuad);
+    Collector extra(Invariant::ExtraBoundaryQuad);
+    Collector reversed_quads(Invariant::ReversedBoundaryQuad);
+    std::vector<bool> matched(num_faces, false);
+    for (std::size_t i = 0; i < expected_boundary->quads.size(); ++i) {
+      const Quad& q = expected_boundary->quads[i];
+      const FaceKey key = face_key(q);
+      const auto it = std::lower_bound(face_keys.begin(), face_keys.end(), key);
+      const auto f = static_cast<std::uint32_t>(it - face_keys.begin());
+      if (it == face_keys.end() || *it != key || face_count(f) != 1 || matched[f]) {
+        missing.add(QuadId(i).str());
+        continue;
+      }
+      matched[f] = true;
+      const std::uint32_t slot = face_slots[face_begin[f]];
+      const Quad actual = hex_face(complex.hexes[slot / 6], static_cast<int>(slot % 6));
+      if (!same_cycle(q, actual)) reversed_quads.add(QuadId(i).str());
+    }
+    for (std::uint32_t f = 0; f < num_faces; ++f)
+      if (face_count(f) == 1 && !matched[f]) extra.add(face_slot_str(face_slots[face_begin[f]]));
+    missing.flush(report);
+    extra.flush(report);
+    reversed_quads.flush(report);
+  }
+
+  // 7. Euler characteristic.
+  if (report.euler_boundary % 2 != 0 || 2 * report.euler_volume != report.euler_boundary) {
+    Collector euler(Invariant::EulerCharacteristic);
+    euler.add("chi(volume)=" + std::to_string(report.euler_volume) +
+              " chi(boundary)=" + std::to_string(report.euler_boundary));
+    euler.flush(report);
+  }
+  return report;
+}
+
+void require_valid(const ValidationReport& report) {
+  if (report.valid) return;
+  const Violation& v = report.violations.front();
+  std::string message = "invalid hex complex: " + std::string(v.name()) + " violated by " +
+                        std::to_string(v.count) + " element(s)";
+  if (!v.examples.empty()) message += ", first " + v.examples.front();
+  if (report.violations.size() > 1)
+    message += " (and " + std::to_string(report.violations.size() - 1) + " more invariant(s))";
+  throw InternalError(message);
+}
+
+}  // namespace stcweave::stc

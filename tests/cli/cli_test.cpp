@@ -41,7 +41,8 @@ class Cli : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("stcweave_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+           ("stcweave_cli_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -68,8 +69,8 @@ TEST_F(Cli, UsageErrorsExitOne) {
 
 TEST_F(Cli, MeshWritesAValidMeshAndAReport) {
   const fs::path out = dir_ / "bar.vtk", report = dir_ / "bar.json";
-  const CliRun r = run("mesh " + data("bar_1x1x3.obj") + " -o " + out.string() + " --report " +
-                    report.string());
+  const CliRun r =
+      run("mesh " + data("bar_1x1x3.obj") + " -o " + out.string() + " --report " + report.string());
   ASSERT_EQ(r.code, 0) << r.out;
   ASSERT_TRUE(fs::exists(out));
   const auto j = nlohmann::json::parse(slurp(report));
@@ -90,10 +91,10 @@ TEST_F(Cli, MeshIsDeterministicByteForByte) {
 
 TEST_F(Cli, TraceHasSelectionAndRuleLines) {
   const fs::path out = dir_ / "l.vtk", trace = dir_ / "t.jsonl";
-  ASSERT_EQ(run("mesh " + data("lblock.obj") + " -o " + out.string() + " -q --trace " +
-                trace.string())
-                .code,
-            0);
+  ASSERT_EQ(
+      run("mesh " + data("lblock.obj") + " -o " + out.string() + " -q --trace " + trace.string())
+          .code,
+      0);
   std::ifstream in(trace);
   std::string line;
   int selections = 0, rules = 0;
@@ -131,8 +132,8 @@ TEST_F(Cli, UnknownOutputExtensionExitsTwoBeforeWeaving) {
 }
 
 TEST_F(Cli, UnknownRuleSetExitsTwo) {
-  const CliRun r = run("mesh " + data("bar_1x1x3.obj") + " -o " + (dir_ / "x.vtk").string() +
-                    " --rules magic");
+  const CliRun r =
+      run("mesh " + data("bar_1x1x3.obj") + " -o " + (dir_ / "x.vtk").string() + " --rules magic");
   EXPECT_EQ(r.code, 2) << r.out;
   EXPECT_NE(r.out.find("reliable"), std::string::npos) << r.out;
 }

@@ -120,7 +120,8 @@ primal::SurfaceMesh rhombic_dodecahedron() {
       std::vector<int> axis;
       for (int p = 8; p < 14; ++p) {
         const Eigen::RowVector3d ap = s.points.row(p);
-        if ((ap - s.points.row(u)).squaredNorm() < 3.5 && (ap - s.points.row(v)).squaredNorm() < 3.5)
+        if ((ap - s.points.row(u)).squaredNorm() < 3.5 &&
+            (ap - s.points.row(v)).squaredNorm() < 3.5)
           axis.push_back(p);
       }
       stc::Quad q{NodeId(u), NodeId(axis[0]), NodeId(v), NodeId(axis[1])};

@@ -12,8 +12,7 @@ namespace stcweave::test {
 
 /// The a x b x c structured hex mesh of the box [0,a*sx] x [0,b*sy] x [0,c*sz], hexes
 /// positively oriented (VTK order). Node (i,j,k) has id i + (a+1)(j + (b+1)k).
-primal::HexMesh box_hexes(int a, int b, int c, double sx = 1.0, double sy = 1.0,
-                          double sz = 1.0);
+primal::HexMesh box_hexes(int a, int b, int c, double sx = 1.0, double sy = 1.0, double sz = 1.0);
 
 /// The boundary of `box_hexes(a,b,c)`: 2(ab+bc+ca) quads, outward, nodes renumbered
 /// 0..n-1 in increasing order of their hex-mesh ids.

@@ -45,7 +45,8 @@ void expect_closed_complex(const stc::QuadSurface& input, const WeaveResult& r) 
       const DualLink& l = r.dual[h][static_cast<std::size_t>(f)];
       ASSERT_GE(l.id, 0) << "hex face without a neighbour in the woven STC";
       if (!l.is_boundary) {
-        const DualLink& back = r.dual[static_cast<std::size_t>(l.id)][static_cast<std::size_t>(l.local_face)];
+        const DualLink& back =
+            r.dual[static_cast<std::size_t>(l.id)][static_cast<std::size_t>(l.local_face)];
         EXPECT_FALSE(back.is_boundary);
         EXPECT_EQ(back.id, static_cast<std::int32_t>(h));
         EXPECT_EQ(back.local_face, f);

@@ -133,8 +133,7 @@ std::optional<std::string> Front::check_invariants() const {
     for (int i = 0; i < 4; ++i) {
       const NodeId a = face.nodes[static_cast<std::size_t>(i)];
       const NodeId b = face.nodes[static_cast<std::size_t>((i + 1) % 4)];
-      if (find(a) != a)
-        return "front face " + std::to_string(f) + " uses merged node " + a.str();
+      if (find(a) != a) return "front face " + std::to_string(f) + " uses merged node " + a.str();
       for (int j = i + 1; j < 4; ++j)
         if (face.nodes[static_cast<std::size_t>(j)] == a)
           return "front face " + std::to_string(f) + " repeats node " + a.str();

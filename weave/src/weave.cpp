@@ -59,7 +59,8 @@ struct Transversal {
 
 stc::Quad rotated(const stc::Quad& q, int start) {
   return {q[static_cast<std::size_t>(start % 4)], q[static_cast<std::size_t>((start + 1) % 4)],
-          q[static_cast<std::size_t>((start + 2) % 4)], q[static_cast<std::size_t>((start + 3) % 4)]};
+          q[static_cast<std::size_t>((start + 2) % 4)],
+          q[static_cast<std::size_t>((start + 3) % 4)]};
 }
 
 std::array<NodeId, 4> sorted_nodes(stc::Quad q) {
@@ -67,7 +68,9 @@ std::array<NodeId, 4> sorted_nodes(stc::Quad q) {
   return q;
 }
 
-NodeId at(const stc::Quad& q, int i) { return q[static_cast<std::size_t>(((i % 4) + 4) % 4)]; }
+NodeId at(const stc::Quad& q, int i) {
+  return q[static_cast<std::size_t>(((i % 4) + 4) % 4)];
+}
 
 class Weaver {
  public:
@@ -156,7 +159,8 @@ class Weaver {
 void Weaver::link(const FaceOwner& a, const FaceOwner& b) {
   const auto set = [this](const FaceOwner& self, const FaceOwner& other) {
     if (!self.is_hex()) return;
-    DualLink& l = dual_[static_cast<std::size_t>(self.id)][static_cast<std::size_t>(self.local_face)];
+    DualLink& l =
+        dual_[static_cast<std::size_t>(self.id)][static_cast<std::size_t>(self.local_face)];
     l.is_boundary = other.is_input();
     l.id = other.id;
     l.local_face = other.local_face;
@@ -197,7 +201,8 @@ HexId Weaver::make_hex(const stc::Hex& hex, std::span<const FaceIndex> used, con
   // Remove the used faces, then add the new ones reversed (outward from the region left).
   std::array<std::int32_t, 6> depth_of{};
   for (int lf = 0; lf < 6; ++lf) {
-    const FaceIndex opposite = face_used[static_cast<std::size_t>(kOppositeFace[static_cast<std::size_t>(lf)])];
+    const FaceIndex opposite =
+        face_used[static_cast<std::size_t>(kOppositeFace[static_cast<std::size_t>(lf)])];
     depth_of[static_cast<std::size_t>(lf)] =
         (opposite != kNoFace && front_.face(opposite).depth >= 0) ? front_.face(opposite).depth + 1
                                                                   : -1;
@@ -208,9 +213,10 @@ HexId Weaver::make_hex(const stc::Hex& hex, std::span<const FaceIndex> used, con
   }
   for (int lf = 0; lf < 6; ++lf) {
     if (face_used[static_cast<std::size_t>(lf)] != kNoFace) continue;
-    const FaceIndex f = front_.add_face(stc::reversed(stc::hex_face(hex, lf)),
-                                        FaceOwner{FaceOwner::Kind::Hex, id.value(), static_cast<std::int8_t>(lf)},
-                                        depth_of[static_cast<std::size_t>(lf)]);
+    const FaceIndex f =
+        front_.add_face(stc::reversed(stc::hex_face(hex, lf)),
+                        FaceOwner{FaceOwner::Kind::Hex, id.value(), static_cast<std::int8_t>(lf)},
+                        depth_of[static_cast<std::size_t>(lf)]);
     push_nodes_of(f);
   }
   for (NodeId n : hex) hexes_at_[n.index()].push_back(id);
@@ -311,7 +317,9 @@ bool Weaver::try_seam(NodeId v, std::string* why) {
     *why = "it would glue two faces of " + HexId(oa.id).str();
     return false;
   }
-  const NodeId keep = (x == y) ? x : (front_.is_input_node(y) || (!front_.is_input_node(x) && y < x)) ? y : x;
+  const NodeId keep = (x == y)                                                           ? x
+                      : (front_.is_input_node(y) || (!front_.is_input_node(x) && y < x)) ? y
+                                                                                         : x;
   const NodeId gone = (keep == x) ? y : x;
   if (x != y) {
     if (front_.is_input_node(x) && front_.is_input_node(y)) {
@@ -329,8 +337,7 @@ bool Weaver::try_seam(NodeId v, std::string* why) {
       }
     }
   }
-  if (oa.is_hex() && ob.is_hex() &&
-      common_nodes(HexId(oa.id), HexId(ob.id), gone, keep) > 4) {
+  if (oa.is_hex() && ob.is_hex() && common_nodes(HexId(oa.id), HexId(ob.id), gone, keep) > 4) {
     *why = "hexes " + HexId(oa.id).str() + " and " + HexId(ob.id).str() +
            " would share more than one face";
     return false;
@@ -466,7 +473,8 @@ bool Weaver::try_cross(NodeId v, std::string* why) {
     *why = "its three faces do not have 7 distinct nodes";
     return false;
   }
-  const FaceOwner o1 = front_.face(f1).owner, o2 = front_.face(f2).owner, o3 = front_.face(f3).owner;
+  const FaceOwner o1 = front_.face(f1).owner, o2 = front_.face(f2).owner,
+                  o3 = front_.face(f3).owner;
   const auto same_hex = [](const FaceOwner& p, const FaceOwner& q) {
     return p.is_hex() && q.is_hex() && p.id == q.id;
   };
@@ -545,7 +553,8 @@ std::vector<std::vector<Passage>> Weaver::all_loops() const {
     for (int dir = 0; dir < 2; ++dir) {
       if (seen[fi][static_cast<std::size_t>(dir)]) continue;
       auto loop = trace_loop(f, dir);
-      for (const Passage& p : loop) seen[static_cast<std::size_t>(p.face)][static_cast<std::size_t>(p.entry % 2)] = true;
+      for (const Passage& p : loop)
+        seen[static_cast<std::size_t>(p.face)][static_cast<std::size_t>(p.entry % 2)] = true;
       loops.push_back(std::move(loop));
     }
   }
@@ -617,9 +626,11 @@ std::array<TraceCandidate, 2> Weaver::weigh(const std::vector<Passage>& strip) {
   }
   if (!met) {
     const int done = stack[0].empty() ? 0 : 1;
-    const std::size_t total = component_size_[component_of_[front_.face(strip.front().face).nodes[0].index()]];
+    const std::size_t total =
+        component_size_[component_of_[front_.face(strip.front().face).nodes[0].index()]];
     c[static_cast<std::size_t>(done)].strictly_on_side = count[static_cast<std::size_t>(done)];
-    c[static_cast<std::size_t>(1 - done)].strictly_on_side = total - on_strip - count[static_cast<std::size_t>(done)];
+    c[static_cast<std::size_t>(1 - done)].strictly_on_side =
+        total - on_strip - count[static_cast<std::size_t>(done)];
   } else {
     for (int d = 0; d < 2; ++d) {
       const std::uint32_t mark = next_stamp();
@@ -728,19 +739,31 @@ std::optional<std::string> Weaver::shrink(const std::vector<Passage>& initial, i
         order.push_back(m);
       }
     }
-    std::stable_sort(order.begin(), order.end(), [this](NodeId p, NodeId q) {
+    // The fewest-sided node first (ties: loop order). Usually its rule applies, so find it
+    // by a scan and sort the rest only when it is blocked.
+    const auto by_valence = [this](NodeId p, NodeId q) {
       return front_.valence(p) < front_.valence(q);
-    });
+    };
+    const auto first = std::min_element(order.begin(), order.end(), by_valence);
+    std::rotate(order.begin(), first, first + 1);
     std::string reasons;
     bool applied = false;
-    for (NodeId v : order) {
+    bool sorted = false;
+    for (std::size_t idx = 0; idx < order.size(); ++idx) {
+      if (idx == 1 && !sorted) {
+        std::stable_sort(order.begin() + 1, order.end(), by_valence);
+        sorted = true;
+      }
+      const NodeId v = order[idx];
       std::string why;
       const std::size_t k = front_.valence(v);
       if (k == 2) {
         why = "valence 2 but its seam is blocked";
         std::string detail;
-        if (!try_seam(v, &detail)) why += " (" + detail + ")";
-        else applied = true;
+        if (!try_seam(v, &detail))
+          why += " (" + detail + ")";
+        else
+          applied = true;
       } else if (k == 3) {
         applied = try_cross(v, &why);
         if (!applied) why = "cross refused: " + why;
@@ -811,7 +834,8 @@ WeaveResult Weaver::run() {
         trace_.push_back(std::move(e));
       }
       if (failures.size() < 2000)
-        failures += "\n  loop " + std::to_string(c.loop) + " side " + "AB"[c.side] + ": " + *failure;
+        failures +=
+            "\n  loop " + std::to_string(c.loop) + " side " + "AB"[c.side] + ": " + *failure;
       if (rules_applied_ != before) {
         progressed = true;  // the front changed: select again
         break;

@@ -41,13 +41,27 @@ class Id {
   value_type value_ = -1;
 };
 
-struct NodeTag { static constexpr const char* prefix = "n"; };
-struct QuadTag { static constexpr const char* prefix = "q"; };
-struct LoopTag { static constexpr const char* prefix = "l"; };
-struct SheetTag { static constexpr const char* prefix = "s"; };
-struct ChordTag { static constexpr const char* prefix = "c"; };
-struct HexTag { static constexpr const char* prefix = "h"; };
-struct ComponentTag { static constexpr const char* prefix = "component "; };
+struct NodeTag {
+  static constexpr const char* prefix = "n";
+};
+struct QuadTag {
+  static constexpr const char* prefix = "q";
+};
+struct LoopTag {
+  static constexpr const char* prefix = "l";
+};
+struct SheetTag {
+  static constexpr const char* prefix = "s";
+};
+struct ChordTag {
+  static constexpr const char* prefix = "c";
+};
+struct HexTag {
+  static constexpr const char* prefix = "h";
+};
+struct ComponentTag {
+  static constexpr const char* prefix = "component ";
+};
 
 using NodeId = Id<NodeTag>;            ///< a mesh vertex (primal)
 using QuadId = Id<QuadTag>;            ///< a quad of a surface (input quad or front face)

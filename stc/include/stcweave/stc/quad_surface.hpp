@@ -20,8 +20,8 @@ using Hex = std::array<NodeId, 8>;
 
 /// The six faces of a VTK-ordered hex, each listed so that its right-hand normal points out
 /// of a positively oriented hex.
-inline constexpr std::array<std::array<int, 4>, 6> kHexFaces = {{
-    {0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}};
+inline constexpr std::array<std::array<int, 4>, 6> kHexFaces = {
+    {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}};
 
 /// The twelve edges of a VTK-ordered hex.
 inline constexpr std::array<std::array<int, 2>, 12> kHexEdges = {{{0, 1},
@@ -58,7 +58,9 @@ struct HexComplex {
 };
 
 /// The quad `q` traversed the other way round (same first node).
-[[nodiscard]] inline Quad reversed(const Quad& q) { return {q[0], q[3], q[2], q[1]}; }
+[[nodiscard]] inline Quad reversed(const Quad& q) {
+  return {q[0], q[3], q[2], q[1]};
+}
 
 /// Face `f` (0..5) of hex `h`, oriented outward for a positively oriented hex.
 [[nodiscard]] inline Quad hex_face(const Hex& h, int f) {

@@ -31,7 +31,7 @@ inline constexpr FaceIndex kNoFace = -1;
 struct FaceOwner {
   enum class Kind : std::uint8_t { Input, Hex };
   Kind kind = Kind::Input;
-  std::int32_t id = -1;        ///< QuadId value (Input) or HexId value (Hex)
+  std::int32_t id = -1;         ///< QuadId value (Input) or HexId value (Hex)
   std::int8_t local_face = -1;  ///< 0..5 for a hex face (kHexFaces order)
 
   [[nodiscard]] bool is_input() const { return kind == Kind::Input; }
@@ -81,7 +81,9 @@ class Front {
   // ---- faces ----
   [[nodiscard]] std::size_t num_faces() const { return alive_; }
   [[nodiscard]] std::size_t face_capacity() const { return faces_.size(); }
-  [[nodiscard]] const FrontFace& face(FaceIndex f) const { return faces_[static_cast<std::size_t>(f)]; }
+  [[nodiscard]] const FrontFace& face(FaceIndex f) const {
+    return faces_[static_cast<std::size_t>(f)];
+  }
   [[nodiscard]] bool is_alive(FaceIndex f) const {
     return f >= 0 && static_cast<std::size_t>(f) < faces_.size() && face(f).alive;
   }

@@ -56,7 +56,7 @@ struct WeaveOptions {
 /// point of the STC).
 struct DualLink {
   bool is_boundary = false;
-  std::int32_t id = -1;        ///< HexId value, or QuadId value when `is_boundary`
+  std::int32_t id = -1;         ///< HexId value, or QuadId value when `is_boundary`
   std::int8_t local_face = -1;  ///< face index in the neighbouring hex (kHexFaces order)
 };
 

@@ -1,0 +1,85 @@
+#pragma once
+/// \file
+/// Validation of a hex complex against the invariants of DESIGN.md ("Invariants"): the
+/// check run on every weave result and by `--check`. Pure topology (no coordinates).
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "stcweave/stc/quad_surface.hpp"
+
+namespace stcweave::stc {
+
+/// The invariants checked by `validate_hex_complex`, in the order they are reported.
+enum class Invariant {
+  NodeOutOfRange,        ///< every hex node id is in 0 .. num_nodes-1
+  RepeatedNode,          ///< every hex has 8 distinct nodes
+  FaceInThreeHexes,      ///< a face belongs to at most two hexes
+  HexesShareTwoFaces,    ///< two hexes share at most one face
+  FaceOrientation,       ///< a face shared by two hexes is traversed in opposite directions
+  InteriorEdgeCycle,     ///< around an interior edge the hexes form one closed cycle
+  BoundaryEdgeFan,       ///< around a boundary edge the hexes form one open fan
+  VertexLink,            ///< vertex links are spheres (interior) or disks (boundary)
+  MissingBoundaryQuad,   ///< every expected boundary quad is a face used once
+  ExtraBoundaryQuad,     ///< every face used once is an expected boundary quad
+  ReversedBoundaryQuad,  ///< expected quads appear with the same cyclic order
+  EulerCharacteristic,   ///< χ(volume) = V − E + F − C equals χ(boundary) / 2
+};
+
+/// The name of an invariant as reported (`"face_in_three_hexes"`, ...).
+[[nodiscard]] std::string_view invariant_name(Invariant invariant);
+
+/// One violated invariant.
+struct Violation {
+  Invariant invariant;
+  std::size_t count = 0;  ///< number of offending elements
+  /// Up to `kMaxExamples` offending elements, named with ids: `h12` (a hex), `h3+h8` (a
+  /// pair of hexes), `n4-n9` (an edge), `n4` (a node), `q7` (an expected quad), `h3.f2`
+  /// (face 2 of hex h3), or the figures (`chi(volume)=1 chi(boundary)=0`).
+  std::vector<std::string> examples;
+
+  static constexpr std::size_t kMaxExamples = 10;
+  [[nodiscard]] std::string_view name() const { return invariant_name(invariant); }
+};
+
+/// The outcome of `validate_hex_complex`: the violated invariants and a few figures.
+struct ValidationReport {
+  bool valid = true;                  ///< no violation
+  std::vector<Violation> violations;  ///< in `Invariant` order, each at most once
+  std::size_t hexes = 0;              ///< hexes checked
+  std::size_t nodes = 0;              ///< nodes used by the well-formed hexes
+  std::size_t edges = 0;              ///< distinct edges
+  std::size_t faces = 0;              ///< distinct faces
+  std::size_t boundary_faces = 0;     ///< faces used by one hex
+  std::int64_t euler_volume = 0;      ///< V − E + F − C
+  std::int64_t euler_boundary = 0;    ///< χ of the faces used once
+  bool boundary_compared = false;     ///< an expected boundary was given
+
+  /// The violation of `invariant`, or nullptr when it holds.
+  [[nodiscard]] const Violation* find(Invariant invariant) const;
+  /// One line per violation (`face_in_three_hexes: 1 (h0 h1 h2)`), or a one-line "valid"
+  /// with the figures.
+  [[nodiscard]] std::string summary() const;
+};
+
+/// Checks every invariant of a hex complex: each hex has 8 distinct valid nodes; a face
+/// belongs to at most two hexes, which traverse it in opposite directions; two hexes share
+/// at most one face; around every interior edge the hexes form one closed cycle, around a
+/// boundary edge one open fan; every vertex link is a sphere (interior node) or a disk
+/// (boundary node); χ(volume) = χ(boundary)/2; and, when `expected_boundary` is given, the
+/// faces used once are exactly its quads (same node ids, same cyclic order up to
+/// rotation). Hexes with an invalid or repeated node are reported and left out of the
+/// other checks. Time: a sort of the faces and edges, then linear.
+/// \param expected_boundary quads over the complex's node ids; nullptr to skip the
+/// comparison.
+[[nodiscard]] ValidationReport validate_hex_complex(const HexComplex& complex,
+                                                    const QuadSurface* expected_boundary = nullptr);
+
+/// \throw InternalError naming the first violation of `report` (and how many there are)
+/// when it is not valid.
+void require_valid(const ValidationReport& report);
+
+}  // namespace stcweave::stc
