@@ -63,7 +63,8 @@ void Front::merge_nodes(NodeId keep, NodeId gone) {
   parent_[gone.index()] = keep;
 }
 
-FaceIndex Front::add_face(const stc::Quad& nodes, FaceOwner owner, std::int32_t depth) {
+FaceIndex Front::add_face(const stc::Quad& nodes, FaceOwner owner, std::int32_t depth,
+                          const std::array<float, 4>& side_angle) {
   FaceIndex f;
   if (!free_.empty()) {
     f = free_.back();
@@ -76,6 +77,7 @@ FaceIndex Front::add_face(const stc::Quad& nodes, FaceOwner owner, std::int32_t 
   face.nodes = nodes;
   face.owner = owner;
   face.depth = depth;
+  face.side_angle = side_angle;
   face.alive = true;
   for (NodeId n : nodes) incident_[n.index()].push_back(f);
   ++alive_;

@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <span>
 
@@ -31,13 +32,40 @@ std::string to_string(RuleSet rules) {
   switch (rules) {
     case RuleSet::Reliable:
       return "reliable";
+    case RuleSet::Extended:
+      return "extended";
   }
   return "?";
 }
 
 RuleSet rule_set_from_name(const std::string& name) {
   if (name == "reliable") return RuleSet::Reliable;
-  throw InvalidInput("unknown rule set '" + name + "': valid names are: reliable");
+  if (name == "extended") return RuleSet::Extended;
+  throw InvalidInput("unknown rule set '" + name + "': valid names are: reliable, extended");
+}
+
+EdgeClass classify_edge(double angle, const ExtendedParameters& p) {
+  if (angle <= p.sharp) return EdgeClass::SharpConvex;
+  if (angle <= p.little_sharp) return EdgeClass::LittleSharpConvex;
+  if (angle <= p.flat) return EdgeClass::Flat;
+  if (angle <= p.little_sharp_nonconvex) return EdgeClass::LittleSharpNonConvex;
+  return EdgeClass::SharpNonConvex;
+}
+
+std::string to_string(EdgeClass c) {
+  switch (c) {
+    case EdgeClass::SharpConvex:
+      return "sharp convex";
+    case EdgeClass::LittleSharpConvex:
+      return "a little sharp convex";
+    case EdgeClass::Flat:
+      return "flat";
+    case EdgeClass::LittleSharpNonConvex:
+      return "a little sharp non-convex";
+    case EdgeClass::SharpNonConvex:
+      return "sharp non-convex";
+  }
+  return "?";
 }
 
 namespace {
@@ -74,8 +102,21 @@ NodeId at(const stc::Quad& q, int i) {
 
 class Weaver {
  public:
-  Weaver(const stc::QuadSurface& surface, const WeaveOptions& options)
+  Weaver(const stc::QuadSurface& surface, const WeaveOptions& options,
+         const std::vector<std::array<double, 4>>& side_angles)
       : front_(surface), options_(options) {
+    if (!side_angles.empty()) {
+      if (side_angles.size() != surface.quads.size())
+        throw InvalidInput("weave: " + std::to_string(side_angles.size()) +
+                           " side angle entries for " + std::to_string(surface.quads.size()) +
+                           " quads");
+      // Input quad q is front face q: the front adds them in order into an empty slot list.
+      for (std::size_t q = 0; q < side_angles.size(); ++q) {
+        std::array<float, 4> angle{};
+        for (std::size_t k = 0; k < 4; ++k) angle[k] = static_cast<float>(side_angles[q][k]);
+        front_.set_side_angles(static_cast<FaceIndex>(q), angle);
+      }
+    }
     hexes_at_.resize(front_.num_nodes());
     node_mark_.assign(front_.num_nodes(), 0);
     const double q = static_cast<double>(surface.quads.size());
@@ -105,6 +146,18 @@ class Weaver {
   }
   [[nodiscard]] std::size_t common_nodes(HexId a, HexId b, NodeId gone, NodeId keep) const;
   [[nodiscard]] bool share_hex(NodeId x, NodeId y) const;
+  /// Why merging x and y would break the complex, if it would: two hexes (one at x, one
+  /// at y) sharing more than one face or four nodes that are not a face of both, or sharing
+  /// a face one of whose copies is already glued (a face in three or more hexes).
+  [[nodiscard]] std::optional<std::string> merge_conflict(NodeId x, NodeId y, NodeId keep,
+                                                          NodeId gone) const;
+
+  // ---- geometry carried by the front (rule set `extended`) ----
+  [[nodiscard]] bool extended() const { return options_.rules == RuleSet::Extended; }
+  /// The dihedral angle of a front edge: the two faces' carried angles combined, where a
+  /// convex and a non-convex deviation from flat cancel (seed sect. 6, Fig. 12) and two
+  /// deviations the same way keep the larger.
+  [[nodiscard]] double edge_angle(FaceIndex f, int side) const;
 
   // ---- rules ----
   bool try_seam(NodeId v, std::string* why);
@@ -114,7 +167,19 @@ class Weaver {
 
   // ---- loops ----
   std::vector<Passage> trace_loop(FaceIndex f, int entry) const;
-  std::vector<std::vector<Passage>> all_loops() const;
+  /// Every loop of the front; also fills `loop_of_` (per face slot and direction).
+  std::vector<std::vector<Passage>> all_loops();
+  /// Properties of shrinking a loop to side A and to side B for the extended rule set.
+  std::array<TraceCandidate, 2> extended_properties(const std::vector<Passage>& strip);
+  /// The loop that `strip` runs along on side `side`, separated by sharp convex edges only
+  /// (parallel crossing, seed sect. 4.5), or -1.
+  std::int32_t parallel_loop(const std::vector<Passage>& strip, int side,
+                             const std::vector<std::vector<Passage>>& loops) const;
+  /// The candidates in the order to try them, as the extended rule set ranks them; `filters`
+  /// receives the trace of the filters and `reason` what decided the first one.
+  std::vector<TraceCandidate> rank_extended(std::vector<TraceCandidate> all,
+                                            std::vector<std::string>* filters,
+                                            std::string* reason) const;
   /// Weights of shrinking the loop to side A and to side B. \pre label_components() ran.
   std::array<TraceCandidate, 2> weigh(const std::vector<Passage>& strip);
   void label_components();
@@ -148,6 +213,8 @@ class Weaver {
   std::vector<std::uint32_t> node_mark_;
   std::uint32_t stamp_ = 0;
   std::vector<std::uint32_t> face_mark_;
+  std::vector<std::array<std::int32_t, 2>> loop_of_;
+  bool relax_geometry_ = false;
   std::vector<std::size_t> component_of_;
   std::vector<std::size_t> component_size_;
   std::uint32_t face_stamp_ = 0;
@@ -207,6 +274,39 @@ HexId Weaver::make_hex(const stc::Hex& hex, std::span<const FaceIndex> used, con
         (opposite != kNoFace && front_.face(opposite).depth >= 0) ? front_.face(opposite).depth + 1
                                                                   : -1;
   }
+  // Angles carried over (seed sect. 6): a new face opposite a used face F takes, on each
+  // side, the angle of the parallel side of F (a hex edge joins their corners). Faces not
+  // opposite a used face carry nothing (flat).
+  std::array<std::array<float, 4>, 6> angles_of{};
+  for (int lf = 0; lf < 6; ++lf) {
+    auto& out = angles_of[static_cast<std::size_t>(lf)];
+    out.fill(180.0F);
+    if (face_used[static_cast<std::size_t>(lf)] != kNoFace) continue;
+    const FaceIndex opposite =
+        face_used[static_cast<std::size_t>(kOppositeFace[static_cast<std::size_t>(lf)])];
+    if (opposite == kNoFace) continue;
+    const stc::Quad mine = stc::reversed(stc::hex_face(hex, lf));
+    const FrontFace& old = front_.face(opposite);
+    const auto partner = [&](NodeId n) {
+      int local = 0;
+      while (hex[static_cast<std::size_t>(local)] != n) ++local;
+      for (const auto& e : stc::kHexEdges) {
+        const int other = e[0] == local ? e[1] : (e[1] == local ? e[0] : -1);
+        if (other < 0) continue;
+        const NodeId m = hex[static_cast<std::size_t>(other)];
+        if (std::find(old.nodes.begin(), old.nodes.end(), m) != old.nodes.end()) return m;
+      }
+      return NodeId::invalid();
+    };
+    for (int j = 0; j < 4; ++j) {
+      const NodeId a = partner(at(mine, j)), b = partner(at(mine, j + 1));
+      for (int k = 0; k < 4; ++k) {
+        const NodeId p = at(old.nodes, k), q = at(old.nodes, k + 1);
+        if ((p == a && q == b) || (p == b && q == a))
+          out[static_cast<std::size_t>(j)] = old.side_angle[static_cast<std::size_t>(k)];
+      }
+    }
+  }
   for (FaceIndex f : used) {
     push_nodes_of(f);
     front_.remove_face(f);
@@ -216,7 +316,8 @@ HexId Weaver::make_hex(const stc::Hex& hex, std::span<const FaceIndex> used, con
     const FaceIndex f =
         front_.add_face(stc::reversed(stc::hex_face(hex, lf)),
                         FaceOwner{FaceOwner::Kind::Hex, id.value(), static_cast<std::int8_t>(lf)},
-                        depth_of[static_cast<std::size_t>(lf)]);
+                        depth_of[static_cast<std::size_t>(lf)],
+                        angles_of[static_cast<std::size_t>(lf)]);
     push_nodes_of(f);
   }
   for (NodeId n : hex) hexes_at_[n.index()].push_back(id);
@@ -285,6 +386,49 @@ bool Weaver::share_hex(NodeId x, NodeId y) const {
   return false;
 }
 
+std::optional<std::string> Weaver::merge_conflict(NodeId x, NodeId y, NodeId keep,
+                                                  NodeId gone) const {
+  const auto image = [&](NodeId n) {
+    n = front_.find(n);
+    return n == gone ? keep : n;
+  };
+  // the local face of hex h whose four nodes all belong to hex other (after the merge)
+  const auto face_within = [&](HexId h, HexId other) -> int {
+    for (int lf = 0; lf < 6; ++lf) {
+      std::size_t hits = 0;
+      for (NodeId n : stc::hex_face(hexes_[h.index()], lf)) {
+        const NodeId m = image(n);
+        for (NodeId o : hexes_[other.index()])
+          if (image(o) == m) {
+            ++hits;
+            break;
+          }
+      }
+      if (hits == 4) return lf;
+    }
+    return -1;
+  };
+  for (HexId h1 : hexes_at_[x.index()]) {
+    for (HexId h2 : hexes_at_[y.index()]) {
+      const std::size_t common = common_nodes(h1, h2, gone, keep);
+      if (common < 4) continue;
+      const std::string pair = h1.str() + " and " + h2.str();
+      if (common > 4)
+        return "merging " + x.str() + " and " + y.str() + " would make " + pair +
+               " share more than one face";
+      const int f1 = face_within(h1, h2), f2 = face_within(h2, h1);
+      if (f1 < 0 || f2 < 0)
+        return "merging " + x.str() + " and " + y.str() + " would make " + pair +
+               " share four nodes that are not a common face";
+      if (dual_[h1.index()][static_cast<std::size_t>(f1)].id >= 0 ||
+          dual_[h2.index()][static_cast<std::size_t>(f2)].id >= 0)
+        return "merging " + x.str() + " and " + y.str() + " would put a face of " + pair +
+               " in more than two hexes";
+    }
+  }
+  return std::nullopt;
+}
+
 // ---------------------------------------------------------------------------------------
 // rules
 
@@ -337,9 +481,14 @@ bool Weaver::try_seam(NodeId v, std::string* why) {
       }
     }
   }
-  if (oa.is_hex() && ob.is_hex() && common_nodes(HexId(oa.id), HexId(ob.id), gone, keep) > 4) {
-    *why = "hexes " + HexId(oa.id).str() + " and " + HexId(ob.id).str() +
-           " would share more than one face";
+  if (x == y) {
+    if (oa.is_hex() && ob.is_hex() && common_nodes(HexId(oa.id), HexId(ob.id), gone, keep) > 4) {
+      *why = "hexes " + HexId(oa.id).str() + " and " + HexId(ob.id).str() +
+             " would share more than one face";
+      return false;
+    }
+  } else if (auto conflict = merge_conflict(x, y, keep, gone)) {
+    *why = *conflict;
     return false;
   }
   // Faces that the merge makes coincide, and the check that the front is not pinched.
@@ -473,6 +622,20 @@ bool Weaver::try_cross(NodeId v, std::string* why) {
     *why = "its three faces do not have 7 distinct nodes";
     return false;
   }
+  if (extended() && options_.extended.flat_cross_precondition && !relax_geometry_) {
+    // The three edges at v: (v, a) and (b, v) in F1, (c, v) in F2.
+    const int c1 = front_.corner_of(f1, v), c2 = front_.corner_of(f2, v);
+    const std::array<double, 3> corner{edge_angle(f1, c1), edge_angle(f1, (c1 + 3) % 4),
+                                       edge_angle(f2, (c2 + 3) % 4)};
+    const auto flat = std::count_if(corner.begin(), corner.end(), [this](double x) {
+      return x > options_.extended.little_sharp;
+    });
+    if (flat > 1) {
+      *why = "too flat a corner (" + std::to_string(flat) + " of its 3 edges flatter than " +
+             std::to_string(static_cast<int>(options_.extended.little_sharp)) + " degrees)";
+      return false;
+    }
+  }
   const FaceOwner o1 = front_.face(f1).owner, o2 = front_.face(f2).owner,
                   o3 = front_.face(f3).owner;
   const auto same_hex = [](const FaceOwner& p, const FaceOwner& q) {
@@ -544,7 +707,18 @@ std::vector<Passage> Weaver::trace_loop(FaceIndex f, int entry) const {
   return out;
 }
 
-std::vector<std::vector<Passage>> Weaver::all_loops() const {
+double Weaver::edge_angle(FaceIndex f, int side) const {
+  const double a = front_.face(f).side_angle[static_cast<std::size_t>(side)];
+  const FaceSide g = front_.across(f, side);
+  if (g.face == kNoFace) return a;
+  const double b = front_.face(g.face).side_angle[static_cast<std::size_t>(g.index)];
+  const double da = a - 180.0, db = b - 180.0;
+  if ((da >= 0.0) == (db >= 0.0)) return 180.0 + (std::abs(da) >= std::abs(db) ? da : db);
+  return 180.0 + da + db;
+}
+
+std::vector<std::vector<Passage>> Weaver::all_loops() {
+  loop_of_.assign(front_.face_capacity(), {-1, -1});
   std::vector<std::array<bool, 2>> seen(front_.face_capacity(), {false, false});
   std::vector<std::vector<Passage>> loops;
   for (std::size_t fi = 0; fi < front_.face_capacity(); ++fi) {
@@ -553,8 +727,11 @@ std::vector<std::vector<Passage>> Weaver::all_loops() const {
     for (int dir = 0; dir < 2; ++dir) {
       if (seen[fi][static_cast<std::size_t>(dir)]) continue;
       auto loop = trace_loop(f, dir);
-      for (const Passage& p : loop)
-        seen[static_cast<std::size_t>(p.face)][static_cast<std::size_t>(p.entry % 2)] = true;
+      for (const Passage& p : loop) {
+        const auto d = static_cast<std::size_t>(p.entry % 2);
+        seen[static_cast<std::size_t>(p.face)][d] = true;
+        loop_of_[static_cast<std::size_t>(p.face)][d] = static_cast<std::int32_t>(loops.size());
+      }
       loops.push_back(std::move(loop));
     }
   }
@@ -690,6 +867,179 @@ void Weaver::label_components() {
   }
 }
 
+std::array<TraceCandidate, 2> Weaver::extended_properties(const std::vector<Passage>& strip) {
+  std::array<TraceCandidate, 2> c = weigh(strip);  // marks the strip faces (face_stamp_)
+  const ExtendedParameters& par = options_.extended;
+  std::size_t strip_faces = 0;
+  {
+    const std::uint32_t mark = next_stamp();
+    std::vector<FaceIndex> seen;
+    for (const Passage& p : strip)
+      if (std::find(seen.begin(), seen.end(), p.face) == seen.end()) seen.push_back(p.face);
+    strip_faces = seen.size();
+    (void)mark;
+  }
+  std::size_t crossed = 0;
+  std::array<std::size_t, 2> side_sharp{0, 0};
+  std::array<std::size_t, 2> nonconvex{0, 0};
+  for (const Passage& p : strip) {
+    if (edge_angle(p.face, p.entry) <= par.little_sharp) ++crossed;
+    for (int d = 0; d < 2; ++d) {
+      const int side = d == 0 ? (p.entry + 3) % 4 : (p.entry + 1) % 4;
+      const double a = edge_angle(p.face, side);
+      if (a <= par.sharp) ++side_sharp[static_cast<std::size_t>(d)];
+      if (a > par.flat) ++nonconvex[static_cast<std::size_t>(d)];
+    }
+  }
+  for (int d = 0; d < 2; ++d) {
+    // Flood side d from its strip nodes through non-strip faces: faces on that side, their
+    // depths and their non-convex edges (each edge counted once).
+    const std::uint32_t node_seen = next_stamp();
+    for (const Passage& p : strip)
+      for (NodeId m : front_.face(p.face).nodes) node_mark_[m.index()] = node_seen;
+    std::vector<NodeId> stack;
+    for (const Passage& p : strip) {
+      const stc::Quad& n = front_.face(p.face).nodes;
+      stack.push_back(at(n, d == 0 ? p.entry : p.entry + 1));
+      stack.push_back(at(n, d == 0 ? p.entry + 3 : p.entry + 2));
+    }
+    std::vector<FaceIndex> faces;
+    std::vector<char> face_seen(front_.face_capacity(), 0);
+    while (!stack.empty()) {
+      const NodeId n = stack.back();
+      stack.pop_back();
+      for (FaceIndex f : front_.faces_at(n)) {
+        if (face_mark_[static_cast<std::size_t>(f)] == face_stamp_ ||
+            face_seen[static_cast<std::size_t>(f)] != 0)
+          continue;
+        face_seen[static_cast<std::size_t>(f)] = 1;
+        faces.push_back(f);
+        for (NodeId m : front_.face(f).nodes) {
+          if (node_mark_[m.index()] == node_seen) continue;
+          node_mark_[m.index()] = node_seen;
+          stack.push_back(m);
+        }
+      }
+    }
+    std::int32_t depth = 0;
+    for (FaceIndex f : faces) {
+      const std::int32_t fd = front_.face(f).depth;
+      if (fd > 0 && (depth == 0 || fd < depth)) depth = fd;
+      for (int k = 0; k < 4; ++k) {
+        const FaceSide g = front_.across(f, k);
+        const bool once = g.face == kNoFace || face_mark_[static_cast<std::size_t>(g.face)] == face_stamp_ ||
+                          f < g.face;
+        if (once && edge_angle(f, k) > par.flat) ++nonconvex[static_cast<std::size_t>(d)];
+      }
+    }
+    TraceCandidate& x = c[static_cast<std::size_t>(d)];
+    x.faces_collapsed = faces.size() + strip_faces;
+    x.depth = depth;
+    x.crossed_sharp = crossed;
+    x.side_sharp = side_sharp[static_cast<std::size_t>(d)];
+    x.nonconvex_on_side = nonconvex[static_cast<std::size_t>(d)];
+  }
+  return c;
+}
+
+std::int32_t Weaver::parallel_loop(const std::vector<Passage>& strip, int side,
+                                   const std::vector<std::vector<Passage>>& loops) const {
+  std::int32_t other = -1;
+  const std::int32_t self = loop_of_[static_cast<std::size_t>(strip.front().face)]
+                                    [static_cast<std::size_t>(strip.front().entry % 2)];
+  for (const Passage& p : strip) {
+    const int s = side == 0 ? (p.entry + 3) % 4 : (p.entry + 1) % 4;
+    if (edge_angle(p.face, s) > options_.extended.sharp) return -1;
+    const FaceSide g = front_.across(p.face, s);
+    if (g.face == kNoFace) return -1;
+    // the loop that has this edge as a side edge enters g perpendicularly to it
+    const std::int32_t l = loop_of_[static_cast<std::size_t>(g.face)]
+                                   [static_cast<std::size_t>((g.index + 1) % 2)];
+    if (l < 0 || l == self || (other >= 0 && l != other)) return -1;
+    other = l;
+  }
+  if (other < 0 || loops[static_cast<std::size_t>(other)].size() != strip.size()) return -1;
+  return other;
+}
+
+std::vector<TraceCandidate> Weaver::rank_extended(std::vector<TraceCandidate> all,
+                                                  std::vector<std::string>* filters,
+                                                  std::string* reason) const {
+  const ExtendedParameters& par = options_.extended;
+  const auto topological = [](const TraceCandidate& p, const TraceCandidate& q) {
+    if (p.faces_collapsed != q.faces_collapsed) return p.faces_collapsed < q.faces_collapsed;
+    return p.weight < q.weight;
+  };
+  std::stable_sort(all.begin(), all.end(), topological);
+  std::vector<TraceCandidate> set;
+  for (const auto& c : all)
+    if (!c.self_intersecting) set.push_back(c);
+  if (set.empty()) set = all;
+  const auto note = [&](const std::string& name, std::size_t before, bool relaxed) {
+    filters->push_back(name + ":" + std::to_string(before) + "->" +
+                       (relaxed ? std::string("relaxed") : std::to_string(set.size())));
+  };
+  const auto keep = [&](const std::string& name, auto pred, bool relaxable) {
+    std::vector<TraceCandidate> kept;
+    for (const auto& c : set)
+      if (pred(c)) kept.push_back(c);
+    const std::size_t before = set.size();
+    if (kept.empty() && relaxable) {
+      note(name, before, true);
+      return;
+    }
+    if (!kept.empty()) set = std::move(kept);
+    note(name, before, false);
+  };
+  bool decided = false;
+  if (par.parallel_crossing) {
+    std::vector<TraceCandidate> parallel;
+    for (const auto& c : set)
+      if (c.parallel_to >= 0) parallel.push_back(c);
+    filters->push_back("parallel_crossing:" + std::to_string(parallel.size()));
+    if (!parallel.empty()) {
+      set = std::move(parallel);
+      *reason = "parallel crossing: runs along loop " + std::to_string(set.front().parallel_to) +
+                " across sharp convex edges; fewest faces collapsed";
+      decided = true;
+    }
+  }
+  if (!decided) {
+    if (par.nonconvex_filter)
+      keep("nonconvex", [](const TraceCandidate& c) { return c.nonconvex_on_side == 0; }, true);
+    if (par.depth_filter) {
+      std::int32_t least = std::numeric_limits<std::int32_t>::max();
+      for (const auto& c : set) least = std::min(least, c.depth);
+      keep("depth", [least](const TraceCandidate& c) { return c.depth == least; }, false);
+    }
+    if (par.first_convex_filter)
+      keep("first_convex", [](const TraceCandidate& c) { return c.crossed_sharp > 0; }, true);
+    if (par.second_convex_filter) {
+      double best = 0.0;
+      const auto ratio = [](const TraceCandidate& c) {
+        return static_cast<double>(c.side_sharp) / static_cast<double>(std::max<std::size_t>(1, c.length));
+      };
+      for (const auto& c : set) best = std::max(best, ratio(c));
+      keep("second_convex", [&](const TraceCandidate& c) { return ratio(c) >= best - 1e-12; }, false);
+    }
+    filters->push_back("topological:" + std::to_string(set.size()));
+    *reason = "filters " + [&] {
+      std::string joined;
+      for (const auto& f : *filters) joined += (joined.empty() ? "" : ", ") + f;
+      return joined;
+    }() + "; fewest faces collapsed";
+  }
+  // The chosen set first (already in topological order), then every other candidate.
+  std::vector<TraceCandidate> order = set;
+  for (const auto& c : all) {
+    const bool in = std::any_of(set.begin(), set.end(), [&](const TraceCandidate& x) {
+      return x.loop == c.loop && x.side == c.side;
+    });
+    if (!in) order.push_back(c);
+  }
+  return order;
+}
+
 std::vector<Transversal> Weaver::transversals(const std::vector<Passage>& strip, int side) const {
   std::vector<Transversal> out;
   out.reserve(strip.size());
@@ -774,6 +1124,13 @@ std::optional<std::string> Weaver::shrink(const std::vector<Passage>& initial, i
       if (applied) break;
       if (reasons.size() < 600) reasons += (reasons.empty() ? "" : "; ") + v.str() + ": " + why;
     }
+    if (!applied && extended() && options_.extended.flat_cross_precondition &&
+        !relax_geometry_) {
+      relax_geometry_ = true;  // RWW: geometric preconditions give way to complete the weave
+      ++stats_.relaxed_preconditions;
+      continue;
+    }
+    relax_geometry_ = false;
     if (!applied) return "every node on the shrinking side is blocked: " + reasons;
   }
 }
@@ -788,18 +1145,30 @@ WeaveResult Weaver::run() {
     candidates.reserve(loops.size() * 2);
     label_components();
     for (std::size_t l = 0; l < loops.size(); ++l) {
-      for (TraceCandidate c : weigh(loops[l])) {
+      const auto pair = extended() ? extended_properties(loops[l]) : weigh(loops[l]);
+      for (TraceCandidate c : pair) {
         c.loop = static_cast<std::int32_t>(l);
+        if (extended() && options_.extended.parallel_crossing && !c.self_intersecting)
+          c.parallel_to = parallel_loop(loops[l], c.side, loops);
         candidates.push_back(c);
       }
     }
     // Ranking: loops that do not cross themselves first, then the smallest weight, then the
     // lowest loop index (loops are enumerated from the lowest front face slot), side A first.
-    std::stable_sort(candidates.begin(), candidates.end(),
-                     [](const TraceCandidate& p, const TraceCandidate& q) {
-                       if (p.self_intersecting != q.self_intersecting) return !p.self_intersecting;
-                       return p.weight < q.weight;
-                     });
+    std::vector<std::string> filters;
+    std::string first_reason = "smallest weight (strictly on side + on strip)";
+    if (extended()) {
+      candidates = rank_extended(std::move(candidates), &filters, &first_reason);
+    } else {
+      // Ranking: loops that do not cross themselves first, then the smallest weight, then the
+      // lowest loop index (loops are enumerated from the lowest front face slot), side A
+      // first.
+      std::stable_sort(candidates.begin(), candidates.end(),
+                       [](const TraceCandidate& p, const TraceCandidate& q) {
+                         if (p.self_intersecting != q.self_intersecting) return !p.self_intersecting;
+                         return p.weight < q.weight;
+                       });
+    }
     ++stats_.selections;
     bool progressed = false;
     std::string failures;
@@ -811,8 +1180,8 @@ WeaveResult Weaver::run() {
         e.step = rules_applied_;
         e.candidates = candidates;
         e.chosen = static_cast<std::int32_t>(ci);
-        e.reason = ci == 0 ? "smallest weight (strictly on side + on strip)"
-                           : "previous candidates failed to shrink";
+        e.reason = ci == 0 ? first_reason : "previous candidates failed to shrink";
+        e.filters = filters;
         e.shrink = shrink_index_ + 1;
         trace_.push_back(std::move(e));
       }
@@ -874,8 +1243,9 @@ WeaveResult Weaver::run() {
 
 }  // namespace
 
-WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options) {
-  Weaver weaver(surface, options);
+WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options,
+                  const std::vector<std::array<double, 4>>& side_angles) {
+  Weaver weaver(surface, options, side_angles);
   return weaver.run();
 }
 

@@ -13,6 +13,7 @@
 /// representative is always an input node when one of the two is. Face slots are reused
 /// last-freed-first, so a run is deterministic.
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -44,6 +45,10 @@ struct FrontFace {
   stc::Quad nodes{};  ///< canonical node ids, outward from the region still to mesh
   FaceOwner owner;
   std::int32_t depth = 0;  ///< seed sect. 6: 0 on the input, i+1 opposite an i-face, -1 else
+  /// Per side, the dihedral angle (degrees, through the region still to mesh) of its edge as
+  /// this face carries it: the input's angle, or the one carried over from the opposite face
+  /// of the hex that created this face (seed sect. 6); 180 (flat) when nothing was carried.
+  std::array<float, 4> side_angle{180.0F, 180.0F, 180.0F, 180.0F};
   bool alive = false;
 };
 
@@ -87,7 +92,12 @@ class Front {
   [[nodiscard]] bool is_alive(FaceIndex f) const {
     return f >= 0 && static_cast<std::size_t>(f) < faces_.size() && face(f).alive;
   }
-  FaceIndex add_face(const stc::Quad& nodes, FaceOwner owner, std::int32_t depth);
+  FaceIndex add_face(const stc::Quad& nodes, FaceOwner owner, std::int32_t depth,
+                     const std::array<float, 4>& side_angle = {180.0F, 180.0F, 180.0F, 180.0F});
+  /// Sets the carried angles of an input face (used once, at the start).
+  void set_side_angles(FaceIndex f, const std::array<float, 4>& side_angle) {
+    faces_[static_cast<std::size_t>(f)].side_angle = side_angle;
+  }
   void remove_face(FaceIndex f);
   /// Corner of `f` holding node `v`, or -1.
   [[nodiscard]] int corner_of(FaceIndex f, NodeId v) const;

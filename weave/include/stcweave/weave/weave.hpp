@@ -25,9 +25,12 @@ namespace stcweave::weave {
 enum class RuleSet {
   /// Reliable Whisker Weaving: the (loop, side) with the smallest topological weight.
   Reliable,
+  /// The seed's extension: parallel crossing, then the non-convex, depth, first and second
+  /// convex filters, then the fewest faces collapsed (seed sect. 4 and 7, Fig. 15).
+  Extended,
 };
 
-/// Name of a rule set as used on the command line ("reliable").
+/// Name of a rule set as used on the command line ("reliable", "extended").
 [[nodiscard]] std::string to_string(RuleSet rules);
 /// \throw InvalidInput for an unknown name.
 [[nodiscard]] RuleSet rule_set_from_name(const std::string& name);
@@ -39,8 +42,49 @@ struct WeaveProgress {
   std::size_t loops_shrunk = 0;
 };
 
+/// Classes of a front edge by its dihedral angle a (degrees, through the region still to
+/// mesh; 180 is flat), seed sect. 4.4, Fig. 8.
+enum class EdgeClass {
+  SharpConvex,           ///< ]0, sharp]
+  LittleSharpConvex,     ///< ]sharp, little_sharp]
+  Flat,                  ///< ]little_sharp, flat]
+  LittleSharpNonConvex,  ///< ]flat, little_sharp_nonconvex]
+  SharpNonConvex,        ///< ]little_sharp_nonconvex, 360[
+};
+
+/// Parameters of the rule set `extended` (seed sect. 4-7). Every filter can be switched off.
+struct ExtendedParameters {
+  double sharp = 120.0;
+  double little_sharp = 170.0;
+  double flat = 190.0;
+  double little_sharp_nonconvex = 240.0;
+  /// Parallel crossing (sect. 4.5): a loop whose side edges are all sharp convex and lie
+  /// along one other loop of the same length is shrunk toward it first.
+  bool parallel_crossing = true;
+  /// Non-convex rule (sect. 4.4): never shrink toward a side holding a non-convex edge.
+  /// When it would leave no candidate it is relaxed (the seed stops there; we go on).
+  bool nonconvex_filter = true;
+  /// Depth rule (sect. 4.1): keep the candidates whose side has the least depth.
+  bool depth_filter = true;
+  /// First convex rule (sect. 4.2): keep loops crossing a sharp or a little sharp edge;
+  /// relaxed when it would leave no candidate.
+  bool first_convex_filter = true;
+  /// Second convex rule (sect. 4.3): keep the highest side elimination weight (sharp
+  /// convex edges along that side of the strip / loop length).
+  bool second_convex_filter = true;
+  /// Geometric precondition of the cross (sect. 2.2, RWW): refuse a cross at a corner
+  /// where more than one of the three edges is flatter than `little_sharp`. Lifted for a
+  /// shrink in which every node would otherwise be blocked.
+  bool flat_cross_precondition = true;
+};
+
+/// The class of an edge of dihedral angle `angle` (degrees).
+[[nodiscard]] EdgeClass classify_edge(double angle, const ExtendedParameters& parameters);
+[[nodiscard]] std::string to_string(EdgeClass edge_class);
+
 struct WeaveOptions {
   RuleSet rules = RuleSet::Reliable;
+  ExtendedParameters extended;
   /// Check the front invariants after every rule (slow: for debugging and tests).
   bool check = false;
   /// Record one trace event per loop selection and per rule application.
@@ -69,6 +113,13 @@ struct TraceCandidate {
   std::size_t on_strip = 0;
   std::size_t weight = 0;  ///< strictly_on_side + on_strip
   bool self_intersecting = false;
+  // Properties of the extended rule set (zero with `reliable`).
+  std::size_t faces_collapsed = 0;    ///< faces strictly on that side + strip faces
+  std::int32_t depth = 0;             ///< least strictly positive face depth on that side, or 0
+  std::size_t crossed_sharp = 0;      ///< sharp or little sharp convex edges the loop crosses
+  std::size_t side_sharp = 0;         ///< sharp convex edges along that side of the strip
+  std::size_t nonconvex_on_side = 0;  ///< non-convex front edges on that side
+  std::int32_t parallel_to = -1;      ///< the loop it runs along (parallel crossing), or -1
 };
 
 /// One line of the trace: a loop selection, a rule application, or a failed shrink.
@@ -80,6 +131,9 @@ struct TraceEvent {
   std::vector<TraceCandidate> candidates;
   std::int32_t chosen = -1;
   std::string reason;  ///< why this candidate (or why the shrink failed)
+  /// Selection: the filters applied in order, each with the candidates it left
+  /// ("nonconvex:12", "depth:4", ...; "relaxed" when a filter would have left none).
+  std::vector<std::string> filters;
   // Rule: which rule, at which node, on which front faces (their whiskers), which hex.
   std::string rule;  ///< "seam", "seam-coincident", "cross", "blind-chord"
   NodeId node;
@@ -97,6 +151,8 @@ struct WeaveStats {
   std::size_t crosses = 0;
   std::size_t blind_chords = 0;
   std::size_t blocked_seams = 0;  ///< seam attempts refused by a precondition
+  /// Shrink steps in which the geometric preconditions were lifted (extended only).
+  std::size_t relaxed_preconditions = 0;
 };
 
 struct WeaveResult {
@@ -120,7 +176,12 @@ struct WeaveResult {
 /// \throw InvalidInput when the surface is not a valid front (open, pinched, degenerate).
 /// \throw WeaveError when every (loop, side) is blocked, naming the blocked nodes and why.
 /// \throw InternalError when an invariant breaks (with `options.check`).
-/// \cite seed sect. 2.2 (loop shrinking, weights), sect. 7 (overall sequence).
-WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options = {});
+/// \cite seed sect. 2.2 (loop shrinking, weights), sect. 4-7 (extended rules, sequence).
+/// \param side_angles per input quad and side, the dihedral angle of that side's edge in
+///        degrees (180 = flat, < 180 convex), as `primal::dihedral_angles` computes it; used
+///        by the `extended` rule set. Empty: every edge is taken as flat.
+/// \throw InvalidInput when `side_angles` is neither empty nor one entry per quad.
+WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options = {},
+                  const std::vector<std::array<double, 4>>& side_angles = {});
 
 }  // namespace stcweave::weave
