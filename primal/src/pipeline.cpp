@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "stcweave/primal/edge_angles.hpp"
 #include "stcweave/stc/errors.hpp"
 
 namespace stcweave::primal {
@@ -53,7 +54,11 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
   r.seconds.orient = clock.lap();
 
   stage("weave");
-  r.woven = weave::weave(r.surface.surface, options.weave);
+  // The extended rule set reads the surface's dihedral angles (weave knows no coordinates).
+  const std::vector<std::array<double, 4>> angles = options.weave.rules == weave::RuleSet::Extended
+                                                        ? dihedral_angles(r.surface)
+                                                        : std::vector<std::array<double, 4>>{};
+  r.woven = weave::weave(r.surface.surface, options.weave, angles);
   r.seconds.weave = clock.lap();
 
   stage("validate");
@@ -64,6 +69,14 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
   stage("recover");
   r.mesh = recover_hex_mesh(r.surface.points, r.woven, &r.harmonic);
   r.seconds.recover = clock.lap();
+
+  if (options.untangle) {
+    stage("position");
+    PositionOptions position = options.position;
+    position.num_fixed = r.woven.num_input_nodes;
+    r.position = position_nodes(r.mesh, position);
+    r.seconds.position = clock.lap();
+  }
 
   stage("quality");
   r.quality = summarize_quality(r.mesh);

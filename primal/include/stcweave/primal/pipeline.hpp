@@ -1,15 +1,16 @@
 #pragma once
 /// \file
 /// The whole pipeline as one call: diagnose -> require weavable -> orient outward -> weave
-/// -> validate the complex -> primal recovery -> quality. Each stage is also a public
-/// function of its own; this only strings them together, times them and keeps every
-/// intermediate value for inspection.
+/// -> validate the complex -> primal recovery -> node positioning (untangling) -> quality. Each
+/// stage is also a public function of its own; this only strings them together, times them and
+/// keeps every intermediate value for inspection.
 
 #include <functional>
 #include <string>
 
 #include "stcweave/primal/diagnose.hpp"
 #include "stcweave/primal/mesh.hpp"
+#include "stcweave/primal/position.hpp"
 #include "stcweave/primal/quality.hpp"
 #include "stcweave/primal/recover.hpp"
 #include "stcweave/stc/validate.hpp"
@@ -21,8 +22,14 @@ struct MeshOptions {
   weave::WeaveOptions weave;
   /// Return an invalid complex instead of throwing InternalError (for debugging).
   bool keep_invalid = false;
+  /// Untangle and optimise the interior nodes after the harmonic placement (stage
+  /// "position"); false keeps the harmonic placement.
+  bool untangle = true;
+  /// Settings of the positioning stage; `num_fixed` is set by the pipeline (the input
+  /// surface's nodes are fixed).
+  PositionOptions position;
   /// Called when a stage starts ("diagnose", "orient", "weave", "validate", "recover",
-  /// "quality").
+  /// "position", "quality").
   std::function<void(const std::string& stage)> on_stage;
 };
 
@@ -33,21 +40,23 @@ struct StageSeconds {
   double weave = 0.0;
   double validate = 0.0;
   double recover = 0.0;
+  double position = 0.0;
   double quality = 0.0;
   [[nodiscard]] double total() const {
-    return diagnose + orient + weave + validate + recover + quality;
+    return diagnose + orient + weave + validate + recover + position + quality;
   }
 };
 
 struct MeshResult {
-  HexMesh mesh;                   ///< input nodes first, with their ids in `surface`
-  SurfaceMesh surface;            ///< the input surface as woven (oriented outward)
+  HexMesh mesh;                    ///< input nodes first, with their ids in `surface`
+  SurfaceMesh surface;             ///< the input surface as woven (oriented outward)
   std::vector<NodeId> file_nodes;  ///< per surface node, its node id in the file
   SurfaceDiagnosis diagnosis;
   OrientationReport orientation;
   weave::WeaveResult woven;
   stc::ValidationReport validation;
   HarmonicReport harmonic;
+  PositionReport position;  ///< empty when `MeshOptions::untangle` is false
   QualitySummary quality;
   StageSeconds seconds;
 };

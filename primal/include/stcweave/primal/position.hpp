@@ -1,0 +1,122 @@
+#pragma once
+/// \file
+/// Node positioning with a fixed boundary: untangling and shape optimisation of a hex mesh
+/// by a foldover-free energy on the corner Jacobians.
+///
+/// Algorithm (what it guarantees and why). Every hex corner k is the tet spanned by the
+/// corner node and its three edge neighbours; its matrix J = [e1 e2 e3] / h (h = the edge
+/// length of a cube of the mean hex volume, fixed by the boundary) has det J = the corner
+/// Jacobian. The energy is Garanzha et al.'s regularised Winslow energy (ACM TOG 40(4),
+/// 2021) summed over the 8 corners of every hex:
+///
+///     E = sum (1 - theta) |J|^2 / chi(eps, d)^(2/3) + theta (1 + d^2) / chi(eps, d),
+///     chi(eps, d) = (d + sqrt(eps^2 + d^2)) / 2,  d = det J,
+///
+/// finite and smooth for every position (so defined while corners are inverted) and, as
+/// eps -> 0, a barrier that grows without bound when a corner flattens. A sequence of
+/// L-BFGS minimisations with decreasing eps (Gmsh's rule eps = sqrt(1e-12 + 0.04
+/// min(d_min, 0)^2), measured in research/geometry.md to untangle where the paper's rule
+/// stalls) pushes the smallest corner determinant up; once every corner is positive, the
+/// barrier keeps it so and the shape term evens the corners out. Only the nodes that are
+/// not fixed move; fixed nodes keep their coordinates bit for bit.
+///
+/// No method can untangle every mesh: corners whose four nodes are all fixed keep their
+/// determinant, and two hexes with the same corner (same node and same three edges, as
+/// in a doublet: two hexes sharing two faces) have opposite determinants there. Such
+/// corners are found first, left out of the energy and reported by element, so that the
+/// optimiser does not chase an impossible goal; the outer loop also stops when the count
+/// of inverted corners has not dropped for `stall_iterations` rounds.
+///
+/// Deterministic: single-threaded, no randomness; the same input gives the same output.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "stcweave/primal/mesh.hpp"
+#include "stcweave/primal/quality.hpp"
+
+namespace stcweave::primal {
+
+/// Where the free nodes start from.
+enum class StartPosition {
+  Keep,     ///< their current coordinates (e.g. the harmonic placement of recover.hpp)
+  Harmonic  ///< the harmonic placement of the hex-edge graph (recover.hpp) first
+};
+
+/// Options of `position_nodes`. Defaults are the settings measured to work in
+/// research/geometry.md §3.3 / §4.3.
+struct PositionOptions {
+  /// Nodes 0 .. num_fixed-1 never move (the input surface's nodes, as in recover.hpp).
+  std::size_t num_fixed = 0;
+  /// Optional extra mask: when non-empty (one entry per node) node n is fixed also when
+  /// fixed[n] is true.
+  std::vector<bool> fixed;
+  StartPosition start = StartPosition::Keep;
+  /// Weight of the volume term (theta) against the shape term (1 - theta).
+  double theta = 0.5;
+  /// Rounds of (minimise, lower eps).
+  int max_outer_iterations = 100;
+  /// L-BFGS iterations per round.
+  int max_inner_iterations = 3000;
+  /// L-BFGS stops when the gradient norm (energy in units of h) is below this.
+  double gradient_tolerance = 1e-4;
+  /// Stop when every corner is positive and the energy changed by less than this
+  /// (relative) over a round.
+  double energy_tolerance = 1e-5;
+  /// Give up when the number of inverted corners has not dropped for this many rounds.
+  int stall_iterations = 10;
+  /// L-BFGS memory.
+  int memory = 6;
+  /// Subdivision depth of the Bézier validity certification (0: no subdivision).
+  int certify_depth = 4;
+};
+
+/// A hex corner that no position of the free nodes can make positive.
+struct ImpossibleCorner {
+  HexId hex;
+  int corner = -1;     ///< 0..7 (= the hex's local node)
+  HexId other;         ///< the hex with the same corner, or invalid for a fixed corner
+  std::string reason;  ///< one line naming the elements
+};
+
+/// What `position_nodes` did.
+struct PositionReport {
+  std::size_t free_nodes = 0;
+  std::size_t outer_iterations = 0;  ///< rounds of (minimise, lower eps)
+  std::size_t iterations = 0;        ///< L-BFGS iterations over all rounds
+  double energy_before = 0.0;        ///< energy at the start (eps of the first round)
+  double energy_after = 0.0;         ///< energy at the end (eps of the last round)
+  double epsilon = 0.0;              ///< last eps
+  std::size_t inverted_before = 0;   ///< hexes with scaled Jacobian <= 0 (9 points)
+  std::size_t inverted_after = 0;
+  std::size_t corners_inverted_before = 0;  ///< corners with det <= 0
+  std::size_t corners_inverted_after = 0;
+  double min_scaled_jacobian_before = 0.0;
+  double min_scaled_jacobian_after = 0.0;
+  double mean_scaled_jacobian_after = 0.0;
+  /// Bézier test after positioning: hexes certified valid / invalid / undecided.
+  ValidityCounts certified;
+  std::vector<ImpossibleCorner> impossible;  ///< corners excluded as impossible
+  std::vector<HexId> inverted;               ///< hexes still inverted (scaled Jacobian <= 0)
+  bool converged = false;                    ///< every corner positive and the energy settled
+  std::string stop;  ///< why it stopped: "converged", "stalled", "iteration limit", ...
+  double seconds = 0.0;
+};
+
+/// The corners of `mesh` that cannot become positive whatever the free nodes do: corners
+/// whose four nodes are fixed and whose determinant is <= 0, and pairs of hexes with the
+/// same corner node and the same three edges in opposite orientation.
+/// \pre `fixed.size() == mesh.points.rows()`.
+[[nodiscard]] std::vector<ImpossibleCorner> impossible_corners(const HexMesh& mesh,
+                                                               const std::vector<bool>& fixed);
+
+/// Moves the free nodes of `mesh` to untangle it and improve its shape (see the file
+/// comment). Fixed nodes keep their coordinates exactly.
+/// \pre the hexes are positively oriented overall (their total signed volume is > 0).
+/// \throw InvalidInput when a hex names a node out of range, the fixed mask has the wrong
+///        size, or the total volume is <= 0 (hexes mirrored).
+/// \throw SolverError when the harmonic start fails (StartPosition::Harmonic).
+PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options);
+
+}  // namespace stcweave::primal

@@ -1,0 +1,452 @@
+#include "stcweave/primal/position.hpp"
+
+#include <LBFGS.h>
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <stdexcept>
+
+#include "stcweave/primal/recover.hpp"
+#include "stcweave/stc/errors.hpp"
+
+namespace stcweave::primal {
+namespace {
+
+/// Verdict's corner table: corner node, then its three edge neighbours in the order that
+/// gives a positive determinant for a positively oriented hex.
+constexpr std::array<std::array<int, 4>, 8> kCorners = {{{0, 1, 3, 4},
+                                                         {1, 2, 0, 5},
+                                                         {2, 3, 1, 6},
+                                                         {3, 0, 2, 7},
+                                                         {4, 7, 5, 0},
+                                                         {5, 4, 6, 1},
+                                                         {6, 5, 7, 2},
+                                                         {7, 6, 4, 3}}};
+
+using HexNodes = std::array<std::int32_t, 8>;
+
+/// The regulariser chi(eps, d) = (d + sqrt(eps^2 + d^2)) / 2, written without
+/// cancellation for d <= 0.
+double chi(double eps, double d) {
+  const double r = std::sqrt(eps * eps + d * d);
+  return d > 0.0 ? 0.5 * (d + r) : 0.5 * eps * eps / (r - d);
+}
+
+/// d chi / d d.
+double chi_derivative(double eps, double d) {
+  return 0.5 + 0.5 * d / std::sqrt(eps * eps + d * d);
+}
+
+/// Energy of one corner with edge columns e (already divided by h); adds its gradient with
+/// respect to the columns to g when g is not null. Returns +inf when not finite.
+double corner_energy(const std::array<Eigen::Vector3d, 3>& e, double eps, double theta,
+                     std::array<Eigen::Vector3d, 3>* g) {
+  const std::array<Eigen::Vector3d, 3> cof = {e[1].cross(e[2]), e[2].cross(e[0]), e[0].cross(e[1])};
+  const double d = e[0].dot(cof[0]);
+  const double c = chi(eps, d);
+  const double c23 = std::cbrt(c * c);
+  const double frob = e[0].squaredNorm() + e[1].squaredNorm() + e[2].squaredNorm();
+  const double f = frob / c23;
+  const double vol = (1.0 + d * d) / c;
+  const double energy = (1.0 - theta) * f + theta * vol;
+  if (!std::isfinite(energy)) return std::numeric_limits<double>::infinity();
+  if (g != nullptr) {
+    const double dc = chi_derivative(eps, d);
+    const double a = (1.0 - theta) * 2.0 / c23;
+    const double b = -(1.0 - theta) * (2.0 / 3.0) * f * dc / c + theta * (2.0 * d - vol * dc) / c;
+    for (std::size_t k = 0; k < 3; ++k) (*g)[k] = a * e[k] + b * cof[k];
+  }
+  return energy;
+}
+
+/// The state shared by the energy evaluations: hexes, which corners count, which nodes
+/// move, and positions in units of h around the mesh's centre.
+class Problem {
+ public:
+  Problem(const HexMesh& mesh, const std::vector<bool>& fixed, double theta)
+      : theta_(theta), num_nodes_(static_cast<std::size_t>(mesh.points.rows())) {
+    hexes_.reserve(mesh.complex.hexes.size());
+    for (const stc::Hex& h : mesh.complex.hexes) {
+      HexNodes n{};
+      for (std::size_t i = 0; i < 8; ++i) {
+        if (!h[i].is_valid() || h[i].index() >= num_nodes_)
+          throw InvalidInput("position_nodes: hex h" + std::to_string(hexes_.size()) +
+                             " names node " + h[i].str() + " out of range (" +
+                             std::to_string(num_nodes_) + " nodes)");
+        n[i] = h[i].value();
+      }
+      hexes_.push_back(n);
+    }
+    active_.assign(hexes_.size(), 0xFF);
+    slot_.assign(num_nodes_, -1);
+    std::vector<bool> used(num_nodes_, false);
+    for (const HexNodes& n : hexes_)
+      for (std::int32_t v : n) used[static_cast<std::size_t>(v)] = true;
+    for (std::size_t v = 0; v < num_nodes_; ++v)
+      if (!fixed[v] && used[v]) {
+        slot_[v] = static_cast<std::int32_t>(free_.size());
+        free_.push_back(static_cast<std::int32_t>(v));
+      }
+    // Node -> (hex, local) incidences of the free nodes, in increasing (hex, local) order,
+    // so that gradients are gathered in a fixed order.
+    offsets_.assign(free_.size() + 1, 0);
+    for (const HexNodes& n : hexes_)
+      for (std::int32_t v : n)
+        if (slot_[static_cast<std::size_t>(v)] >= 0)
+          ++offsets_[slot_[static_cast<std::size_t>(v)] + 1];
+    for (std::size_t i = 0; i < free_.size(); ++i) offsets_[i + 1] += offsets_[i];
+    incidences_.resize(offsets_.back());
+    std::vector<std::size_t> fill(offsets_.begin(), offsets_.end() - 1);
+    for (std::size_t hx = 0; hx < hexes_.size(); ++hx)
+      for (std::size_t i = 0; i < 8; ++i) {
+        const std::int32_t s = slot_[static_cast<std::size_t>(hexes_[hx][i])];
+        if (s >= 0) incidences_[fill[static_cast<std::size_t>(s)]++] = hx * 8 + i;
+      }
+    // Scale: the edge of a cube of the mean hex volume. The total volume only depends on
+    // the boundary faces (interior faces cancel), so h does not change while optimising.
+    centre_ = mesh.points.colwise().mean().transpose();
+    double volume = 0.0;
+    for (const HexNodes& n : hexes_) {
+      for (const auto& face : stc::kHexFaces) {
+        Eigen::Vector3d c = Eigen::Vector3d::Zero();
+        for (int k : face) c += point(mesh, n[static_cast<std::size_t>(k)]);
+        c *= 0.25;
+        for (std::size_t k = 0; k < 4; ++k) {
+          const Eigen::Vector3d a = point(mesh, n[static_cast<std::size_t>(face[k])]);
+          const Eigen::Vector3d b = point(mesh, n[static_cast<std::size_t>(face[(k + 1) % 4])]);
+          volume += a.dot(b.cross(c)) / 6.0;
+        }
+      }
+    }
+    volume_ = volume;
+    h_ = hexes_.empty() || volume <= 0.0 ? 1.0
+                                         : std::cbrt(volume / static_cast<double>(hexes_.size()));
+    positions_.resize(static_cast<Eigen::Index>(num_nodes_), 3);
+    for (std::size_t v = 0; v < num_nodes_; ++v)
+      positions_.row(static_cast<Eigen::Index>(v)) =
+          (point(mesh, static_cast<std::int32_t>(v)) - centre_).transpose() / h_;
+    hex_grad_.resize(hexes_.size() * 24);
+  }
+
+  [[nodiscard]] double volume() const { return volume_; }
+  [[nodiscard]] std::size_t num_free() const { return free_.size(); }
+  [[nodiscard]] const std::vector<HexNodes>& hexes() const { return hexes_; }
+  void deactivate(std::size_t hex, int corner) {
+    active_[hex] = static_cast<std::uint8_t>(active_[hex] & ~(1u << corner));
+  }
+  void set_epsilon(double eps) { eps_ = eps; }
+
+  /// The free coordinates (3 per free node, scaled).
+  [[nodiscard]] Eigen::VectorXd variables() const {
+    Eigen::VectorXd x(static_cast<Eigen::Index>(3 * free_.size()));
+    for (std::size_t i = 0; i < free_.size(); ++i)
+      for (int c = 0; c < 3; ++c) x(static_cast<Eigen::Index>(3 * i) + c) = positions_(free_[i], c);
+    return x;
+  }
+
+  void set_variables(const Eigen::VectorXd& x) {
+    for (std::size_t i = 0; i < free_.size(); ++i)
+      for (int c = 0; c < 3; ++c) positions_(free_[i], c) = x(static_cast<Eigen::Index>(3 * i) + c);
+  }
+
+  /// Writes the free nodes back into `mesh` (fixed nodes are not touched).
+  void store(HexMesh& mesh) const {
+    for (std::int32_t v : free_)
+      mesh.points.row(v) = (positions_.row(v).transpose() * h_ + centre_).transpose();
+  }
+
+  /// Smallest determinant over the active corners and the number of active corners <= 0.
+  [[nodiscard]] std::pair<double, std::size_t> min_determinant() const {
+    double best = std::numeric_limits<double>::infinity();
+    std::size_t bad = 0;
+    for (std::size_t hx = 0; hx < hexes_.size(); ++hx)
+      for (std::size_t k = 0; k < 8; ++k) {
+        if ((active_[hx] & (1u << k)) == 0) continue;
+        const std::array<Eigen::Vector3d, 3> e = edges(hx, k);
+        const double d = e[0].dot(e[1].cross(e[2]));
+        best = std::min(best, d);
+        if (d <= 0.0) ++bad;
+      }
+    return {best, bad};
+  }
+
+  /// Energy at the current positions; with `grad` (size 3 * free nodes) its gradient.
+  double evaluate(Eigen::VectorXd* grad) {
+    double total = 0.0;
+    std::array<Eigen::Vector3d, 3> g;
+    for (std::size_t hx = 0; hx < hexes_.size(); ++hx) {
+      double* hg = hex_grad_.data() + hx * 24;
+      if (grad != nullptr) std::fill(hg, hg + 24, 0.0);
+      for (std::size_t k = 0; k < 8; ++k) {
+        if ((active_[hx] & (1u << k)) == 0) continue;
+        const std::array<Eigen::Vector3d, 3> e = edges(hx, k);
+        total += corner_energy(e, eps_, theta_, grad != nullptr ? &g : nullptr);
+        if (grad == nullptr) continue;
+        const auto& c = kCorners[k];
+        for (std::size_t j = 0; j < 3; ++j) {
+          double* to = hg + 3 * static_cast<std::size_t>(c[j + 1]);
+          double* from = hg + 3 * static_cast<std::size_t>(c[0]);
+          for (int a = 0; a < 3; ++a) {
+            to[a] += g[j](a);
+            from[a] -= g[j](a);
+          }
+        }
+      }
+    }
+    if (grad != nullptr) {
+      grad->setZero(static_cast<Eigen::Index>(3 * free_.size()));
+      for (std::size_t i = 0; i < free_.size(); ++i)
+        for (std::size_t q = offsets_[i]; q < offsets_[i + 1]; ++q) {
+          const double* hg = hex_grad_.data() + 3 * incidences_[q];
+          for (int a = 0; a < 3; ++a) (*grad)(static_cast<Eigen::Index>(3 * i) + a) += hg[a];
+        }
+    }
+    return std::isfinite(total) ? total : std::numeric_limits<double>::infinity();
+  }
+
+ private:
+  static Eigen::Vector3d point(const HexMesh& mesh, std::int32_t v) {
+    return mesh.points.row(v).transpose();
+  }
+
+  [[nodiscard]] std::array<Eigen::Vector3d, 3> edges(std::size_t hx, std::size_t k) const {
+    const HexNodes& n = hexes_[hx];
+    const auto& c = kCorners[k];
+    const Eigen::Vector3d o = positions_.row(n[static_cast<std::size_t>(c[0])]).transpose();
+    return {positions_.row(n[static_cast<std::size_t>(c[1])]).transpose() - o,
+            positions_.row(n[static_cast<std::size_t>(c[2])]).transpose() - o,
+            positions_.row(n[static_cast<std::size_t>(c[3])]).transpose() - o};
+  }
+
+  double theta_;
+  double eps_ = 1.0;
+  std::size_t num_nodes_;
+  std::vector<HexNodes> hexes_;
+  std::vector<std::uint8_t> active_;
+  std::vector<std::int32_t> slot_;  ///< node -> free index or -1
+  std::vector<std::int32_t> free_;  ///< free index -> node
+  std::vector<std::size_t> offsets_;
+  std::vector<std::size_t> incidences_;  ///< hex * 8 + local
+  Eigen::Vector3d centre_;
+  double h_ = 1.0;
+  double volume_ = 0.0;
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> positions_;
+  std::vector<double> hex_grad_;
+};
+
+/// The functor LBFGS++ minimises; it remembers the best point it evaluated, so that a
+/// line-search failure never loses progress.
+class Objective {
+ public:
+  explicit Objective(Problem& problem) : problem_(problem) {}
+
+  double operator()(const Eigen::VectorXd& x, Eigen::VectorXd& grad) {
+    problem_.set_variables(x);
+    const double f = problem_.evaluate(&grad);
+    if (!std::isfinite(f)) {
+      grad.setZero(x.size());
+      return std::numeric_limits<double>::infinity();
+    }
+    if (f < best_energy_) {
+      best_energy_ = f;
+      best_ = x;
+    }
+    return f;
+  }
+
+  void reset(const Eigen::VectorXd& x, double f) {
+    best_ = x;
+    best_energy_ = f;
+  }
+  [[nodiscard]] const Eigen::VectorXd& best() const { return best_; }
+  [[nodiscard]] double best_energy() const { return best_energy_; }
+
+ private:
+  Problem& problem_;
+  Eigen::VectorXd best_;
+  double best_energy_ = std::numeric_limits<double>::infinity();
+};
+
+}  // namespace
+
+std::vector<ImpossibleCorner> impossible_corners(const HexMesh& mesh,
+                                                 const std::vector<bool>& fixed) {
+  if (fixed.size() != static_cast<std::size_t>(mesh.points.rows()))
+    throw InvalidInput("impossible_corners: the fixed mask has " + std::to_string(fixed.size()) +
+                       " entries for " + std::to_string(mesh.points.rows()) + " nodes");
+  std::vector<ImpossibleCorner> out;
+  // Corner key: the corner node and its three edge neighbours sorted; the parity of the
+  // sorting permutation is the orientation of the corner.
+  std::map<std::array<std::int32_t, 4>, std::vector<std::pair<std::size_t, int>>> seen;
+  for (std::size_t hx = 0; hx < mesh.complex.hexes.size(); ++hx) {
+    const stc::Hex& h = mesh.complex.hexes[hx];
+    const std::array<double, 8> dets = hex_corner_jacobians(mesh.points, h);
+    for (int k = 0; k < 8; ++k) {
+      const auto& c = kCorners[static_cast<std::size_t>(k)];
+      std::array<std::int32_t, 3> nb = {h[static_cast<std::size_t>(c[1])].value(),
+                                        h[static_cast<std::size_t>(c[2])].value(),
+                                        h[static_cast<std::size_t>(c[3])].value()};
+      bool all_fixed = fixed[h[static_cast<std::size_t>(c[0])].index()];
+      for (std::int32_t v : nb) all_fixed = all_fixed && fixed[static_cast<std::size_t>(v)];
+      if (all_fixed && dets[static_cast<std::size_t>(k)] <= 0.0) {
+        out.push_back({HexId(hx), k, HexId::invalid(),
+                       "corner " + h[static_cast<std::size_t>(c[0])].str() + " of h" +
+                           std::to_string(hx) + " has its four nodes fixed and det " +
+                           std::to_string(dets[static_cast<std::size_t>(k)]) + " <= 0"});
+        continue;
+      }
+      int parity = 0;
+      for (int a = 0; a < 3; ++a)
+        for (int b = a + 1; b < 3; ++b)
+          if (nb[static_cast<std::size_t>(a)] > nb[static_cast<std::size_t>(b)]) parity ^= 1;
+      std::sort(nb.begin(), nb.end());
+      auto& list = seen[{h[static_cast<std::size_t>(c[0])].value(), nb[0], nb[1], nb[2]}];
+      list.emplace_back(hx * 2 + static_cast<std::size_t>(parity), k);
+    }
+  }
+  for (const auto& [key, list] : seen) {
+    for (std::size_t i = 0; i < list.size(); ++i)
+      for (std::size_t j = i + 1; j < list.size(); ++j) {
+        if ((list[i].first & 1u) == (list[j].first & 1u)) continue;
+        const HexId a(list[i].first / 2), b(list[j].first / 2);
+        const std::string msg = "hexes " + a.str() + " and " + b.str() + " share corner n" +
+                                std::to_string(key[0]) + " with the same three edges (n" +
+                                std::to_string(key[1]) + ", n" + std::to_string(key[2]) + ", n" +
+                                std::to_string(key[3]) +
+                                ") in opposite orientations: one of them is inverted there";
+        out.push_back({a, list[i].second, b, msg});
+        out.push_back({b, list[j].second, a, msg});
+      }
+  }
+  std::sort(out.begin(), out.end(), [](const ImpossibleCorner& x, const ImpossibleCorner& y) {
+    return std::pair(x.hex, x.corner) < std::pair(y.hex, y.corner);
+  });
+  out.erase(std::unique(out.begin(), out.end(),
+                        [](const ImpossibleCorner& x, const ImpossibleCorner& y) {
+                          return x.hex == y.hex && x.corner == y.corner;
+                        }),
+            out.end());
+  return out;
+}
+
+PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  PositionReport report;
+  const std::size_t n = static_cast<std::size_t>(mesh.points.rows());
+  if (!options.fixed.empty() && options.fixed.size() != n)
+    throw InvalidInput("position_nodes: the fixed mask has " +
+                       std::to_string(options.fixed.size()) + " entries for " + std::to_string(n) +
+                       " nodes");
+  std::vector<bool> fixed(n, false);
+  for (std::size_t v = 0; v < n; ++v)
+    fixed[v] = v < options.num_fixed || (!options.fixed.empty() && options.fixed[v]);
+
+  if (options.start == StartPosition::Harmonic) {
+    if (!options.fixed.empty())
+      throw InvalidInput(
+          "position_nodes: the harmonic start needs the fixed nodes to be 0..num_fixed-1 "
+          "(no mask)");
+    (void)harmonic_positions(mesh, options.num_fixed);
+  }
+
+  const QualitySummary before = summarize_quality(mesh, 0);
+  report.inverted_before = before.inverted;
+  report.min_scaled_jacobian_before = before.min_scaled_jacobian;
+  for (const stc::Hex& h : mesh.complex.hexes)
+    for (double d : hex_corner_jacobians(mesh.points, h))
+      report.corners_inverted_before += d <= 0.0;
+
+  Problem problem(mesh, fixed, options.theta);
+  if (!mesh.complex.hexes.empty() && !(problem.volume() > 0.0))
+    throw InvalidInput("position_nodes: the hexes enclose a total volume of " +
+                       std::to_string(problem.volume()) +
+                       " <= 0: their node order is mirrored (swap nodes 1-3 and 5-7)");
+  report.free_nodes = problem.num_free();
+  report.impossible = impossible_corners(mesh, fixed);
+  for (const ImpossibleCorner& c : report.impossible) problem.deactivate(c.hex.index(), c.corner);
+
+  Eigen::VectorXd x = problem.variables();
+  auto [dmin, bad] = problem.min_determinant();
+  double eps = dmin > 0.0 ? 1e-6 : 1.0;
+  problem.set_epsilon(eps);
+  report.energy_before = problem.evaluate(nullptr);
+  report.stop = "no free node";
+
+  if (problem.num_free() > 0 && !mesh.complex.hexes.empty()) {
+    LBFGSpp::LBFGSParam<double> param;
+    param.m = options.memory;
+    param.epsilon = options.gradient_tolerance;
+    param.epsilon_rel = 0.0;
+    param.past = 1;
+    param.delta = 1e-10;
+    param.max_iterations = options.max_inner_iterations;
+    param.max_linesearch = 100;
+    param.linesearch = LBFGSpp::LBFGS_LINESEARCH_BACKTRACKING_WOLFE;
+    LBFGSpp::LBFGSSolver<double, LBFGSpp::LineSearchBacktracking> solver(param);
+    Objective objective(problem);
+    double previous = report.energy_before;
+    std::size_t best_bad = bad;
+    int stalled = 0;
+    report.stop = "iteration limit";
+    for (int outer = 0; outer < options.max_outer_iterations; ++outer) {
+      problem.set_epsilon(eps);
+      problem.set_variables(x);
+      const double start = problem.evaluate(nullptr);
+      objective.reset(x, start);
+      double fx = start;
+      try {
+        report.iterations += static_cast<std::size_t>(solver.minimize(objective, x, fx));
+      } catch (const std::runtime_error&) {
+        // A line search that cannot progress ends this round; the best point is kept.
+      }
+      x = objective.best();
+      problem.set_variables(x);
+      const double energy = objective.best_energy();
+      ++report.outer_iterations;
+      std::tie(dmin, bad) = problem.min_determinant();
+      if (bad < best_bad) {
+        best_bad = bad;
+        stalled = 0;
+      } else if (bad > 0) {
+        ++stalled;
+      }
+      const bool settled =
+          std::abs(previous - energy) <= options.energy_tolerance * std::abs(energy);
+      previous = energy;
+      report.energy_after = energy;
+      if (dmin > 0.0 && settled) {
+        report.converged = true;
+        report.stop = "converged";
+        break;
+      }
+      if (bad > 0 && stalled >= options.stall_iterations) {
+        report.stop = "stalled: " + std::to_string(bad) + " corners still inverted";
+        break;
+      }
+      eps = std::sqrt(1e-12 + 0.04 * std::min(dmin, 0.0) * std::min(dmin, 0.0));
+    }
+    report.epsilon = eps;
+    problem.store(mesh);
+  }
+
+  const QualitySummary after = summarize_quality(mesh, 0);
+  report.inverted_after = after.inverted;
+  report.min_scaled_jacobian_after = after.min_scaled_jacobian;
+  report.mean_scaled_jacobian_after = after.mean_scaled_jacobian;
+  for (std::size_t hx = 0; hx < mesh.complex.hexes.size(); ++hx) {
+    for (double d : hex_corner_jacobians(mesh.points, mesh.complex.hexes[hx]))
+      report.corners_inverted_after += d <= 0.0;
+    if (after.per_hex[hx] <= 0.0) report.inverted.emplace_back(hx);
+  }
+  report.certified = count_bezier_validity(mesh, options.certify_depth);
+  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return report;
+}
+
+}  // namespace stcweave::primal
