@@ -18,5 +18,7 @@ Action add_loops_command(CLI::App& app);
 Action add_sheets_command(CLI::App& app);
 Action add_mesh_command(CLI::App& app);
 Action add_check_command(CLI::App& app);
+Action add_bench_command(CLI::App& app);
+Action add_generate_command(CLI::App& app);
 
 }  // namespace stcweave::cli

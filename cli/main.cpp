@@ -26,6 +26,8 @@ int main(int argc, char** argv) {
   add(cli::add_check_command);
   add(cli::add_loops_command);
   add(cli::add_sheets_command);
+  add(cli::add_bench_command);
+  add(cli::add_generate_command);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,480 @@
+#include "stcweave/primal/bench.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <istream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "stcweave/stc/errors.hpp"
+
+namespace stcweave::primal {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string trim(std::string_view s) {
+  const auto first = s.find_first_not_of(" \t\r\n");
+  if (first == std::string_view::npos) return {};
+  const auto last = s.find_last_not_of(" \t\r\n");
+  return std::string(s.substr(first, last - first + 1));
+}
+
+std::vector<std::string> fields_of(const std::string& line) {
+  std::istringstream in(line);
+  std::vector<std::string> fields;
+  std::string f;
+  while (in >> f) fields.push_back(f);
+  return fields;
+}
+
+std::string safe_stem(std::string_view name) {
+  std::string out(name);
+  for (char& c : out) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '.' || c == '-' || c == '_';
+    if (!ok) c = '_';
+  }
+  return out;
+}
+
+/// Stages in the order the pipeline runs them; `total` always last, others alphabetically
+/// between.
+int stage_rank(const std::string& stage) {
+  static const std::array<std::string_view, 9> kOrder = {
+      "diagnose", "orient", "weave", "validate", "recover", "position", "quality", "stc", "write"};
+  for (std::size_t i = 0; i < kOrder.size(); ++i)
+    if (stage == kOrder[i]) return static_cast<int>(i);
+  return stage == "total" ? 1000 : 500;
+}
+
+bool stage_less(const std::string& a, const std::string& b) {
+  const int ra = stage_rank(a), rb = stage_rank(b);
+  return ra != rb ? ra < rb : a < b;
+}
+
+std::string number(double v, const char* format) {
+  std::array<char, 64> buf{};
+  std::snprintf(buf.data(), buf.size(), format, v);
+  return buf.data();
+}
+
+template <class T>
+std::string cell(const std::optional<T>& v) {
+  if (!v) return {};
+  if constexpr (std::is_same_v<T, bool>)
+    return *v ? "true" : "false";
+  else if constexpr (std::is_floating_point_v<T>)
+    return number(*v, "%.6g");
+  else
+    return std::to_string(*v);
+}
+
+template <class T>
+std::string md(const std::optional<T>& v, const char* format = "%.3f") {
+  if (!v) return "–";
+  if constexpr (std::is_floating_point_v<T>)
+    return number(*v, format);
+  else
+    return std::to_string(*v);
+}
+
+std::string csv_quote(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
+
+std::string md_escape(std::string_view s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '|')
+      out += "\\|";
+    else if (c == '\n' || c == '\r')
+      out += ' ';
+    else
+      out += c;
+  }
+  return out;
+}
+
+/// Shortens `s` to at most `n` bytes (not in the middle of a UTF-8 sequence), with "...".
+std::string shorten(const std::string& s, std::size_t n) {
+  if (s.size() <= n) return s;
+  std::size_t cut = n - 3;
+  while (cut > 0 && (static_cast<unsigned char>(s[cut]) & 0xC0) == 0x80) --cut;
+  return s.substr(0, cut) + "...";
+}
+
+std::vector<std::string> stage_columns(const std::vector<BenchRow>& rows) {
+  std::set<std::string> seen;
+  for (const BenchRow& r : rows)
+    for (const auto& [stage, s] : r.seconds) seen.insert(stage);
+  std::vector<std::string> stages(seen.begin(), seen.end());
+  std::sort(stages.begin(), stages.end(), stage_less);
+  return stages;
+}
+
+template <class T>
+nlohmann::json or_null(const std::optional<T>& v) {
+  return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+}
+
+}  // namespace
+
+Manifest parse_manifest(std::istream& in, const fs::path& manifest_path) {
+  Manifest m;
+  m.path = manifest_path;
+  const fs::path folder = manifest_path.parent_path();
+  const std::string where = manifest_path.string();
+  std::vector<std::string> written;  // input paths as written, per entry
+  std::map<std::string, std::size_t> line_of;
+  std::string raw;
+  std::size_t line = 0;
+  while (std::getline(in, raw)) {
+    ++line;
+    const auto hash = raw.find('#');
+    const std::vector<std::string> fields =
+        fields_of(hash == std::string::npos ? raw : raw.substr(0, hash));
+    if (fields.empty()) continue;
+    if (fields.size() > 2)
+      throw InvalidInput(where + ":" + std::to_string(line) + ": expected INPUT [REFERENCE], found " +
+                         std::to_string(fields.size()) +
+                         " fields; paths cannot contain spaces, and a comment starts with #");
+    const fs::path input = fs::path(fields[0]).lexically_normal();
+    const auto [it, fresh] = line_of.emplace(input.string(), line);
+    if (!fresh)
+      throw InvalidInput(where + ":" + std::to_string(line) + ": input " + fields[0] +
+                         " is already listed on line " + std::to_string(it->second) +
+                         "; list each input once (--rules runs it with several rule sets)");
+    ManifestEntry e;
+    e.line = line;
+    e.input = input.is_absolute() ? input : (folder / input).lexically_normal();
+    if (fields.size() == 2) {
+      const fs::path ref(fields[1]);
+      e.reference = ref.is_absolute() ? ref : (folder / ref).lexically_normal();
+    }
+    written.push_back(input.generic_string());
+    m.entries.push_back(std::move(e));
+  }
+  if (in.bad()) throw IoError("cannot read the manifest " + where);
+  if (m.entries.empty())
+    throw InvalidInput(where + ": the manifest lists no input; write one input file per line");
+
+  // Display names: drop the leading folders every input shares (keep at least the file name).
+  std::vector<std::vector<std::string>> parts;
+  for (const std::string& w : written) {
+    std::vector<std::string> p;
+    for (const auto& c : fs::path(w)) p.push_back(c.string());
+    parts.push_back(std::move(p));
+  }
+  std::size_t common = parts.front().size() - 1;
+  for (const auto& p : parts) {
+    std::size_t k = 0;
+    while (k < common && k + 1 < p.size() && p[k] == parts.front()[k]) ++k;
+    common = k;
+  }
+  std::set<std::string> stems;
+  for (std::size_t i = 0; i < m.entries.size(); ++i) {
+    std::string name;
+    for (std::size_t k = common; k < parts[i].size(); ++k) {
+      if (!name.empty() && name.back() != '/') name += '/';
+      name += parts[i][k];
+    }
+    ManifestEntry& e = m.entries[i];
+    e.name = name;
+    e.file_stem = safe_stem(name);
+    if (!stems.insert(e.file_stem).second) {
+      e.file_stem += "-line" + std::to_string(e.line);
+      stems.insert(e.file_stem);
+    }
+  }
+  return m;
+}
+
+Manifest read_manifest(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in)
+    throw IoError("cannot open the manifest " + path.string() +
+                  ": check the path (one input per line, # for comments)");
+  return parse_manifest(in, path);
+}
+
+std::vector<std::string> parse_rules_list(std::string_view list) {
+  std::vector<std::string> names;
+  std::size_t start = 0;
+  while (true) {
+    const auto comma = list.find(',', start);
+    const std::string name =
+        trim(list.substr(start, comma == std::string_view::npos ? std::string_view::npos
+                                                                 : comma - start));
+    if (name.empty())
+      throw InvalidInput("--rules '" + std::string(list) +
+                         "': empty rule-set name; give names separated by commas, e.g. "
+                         "reliable,extended");
+    if (std::find(names.begin(), names.end(), name) != names.end())
+      throw InvalidInput("--rules '" + std::string(list) + "': " + name + " is given twice");
+    names.push_back(name);
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return names;
+}
+
+std::string_view to_string(RunStatus status) {
+  switch (status) {
+    case RunStatus::Ok:
+      return "ok";
+    case RunStatus::Rejected:
+      return "rejected";
+    case RunStatus::Failed:
+      return "failed";
+    case RunStatus::Crashed:
+      return "crashed";
+    case RunStatus::Timeout:
+      return "timeout";
+    case RunStatus::OutOfMemory:
+      return "out of memory";
+  }
+  return "failed";
+}
+
+std::optional<double> BenchRow::stage_seconds(std::string_view stage) const {
+  for (const auto& [name, s] : seconds)
+    if (name == stage) return s;
+  return std::nullopt;
+}
+
+void apply_report(const nlohmann::json& report, BenchRow& row) {
+  if (!report.is_object()) return;
+  if (report.contains("hexes") && report["hexes"].is_number_unsigned())
+    row.hexes = report["hexes"].get<std::size_t>();
+  if (report.contains("valid") && report["valid"].is_boolean())
+    row.valid = report["valid"].get<bool>();
+  if (report.contains("quality") && report["quality"].is_object()) {
+    const auto& q = report["quality"];
+    if (q.contains("inverted") && q["inverted"].is_number_unsigned())
+      row.inverted = q["inverted"].get<std::size_t>();
+    if (q.contains("min_scaled_jacobian") && q["min_scaled_jacobian"].is_number())
+      row.min_scaled_jacobian = q["min_scaled_jacobian"].get<double>();
+    if (q.contains("mean_scaled_jacobian") && q["mean_scaled_jacobian"].is_number())
+      row.mean_scaled_jacobian = q["mean_scaled_jacobian"].get<double>();
+  }
+  if (report.contains("seconds") && report["seconds"].is_object()) {
+    row.seconds.clear();
+    for (const auto& [stage, s] : report["seconds"].items())
+      if (s.is_number()) row.seconds.emplace_back(stage, s.get<double>());
+    std::sort(row.seconds.begin(), row.seconds.end(),
+              [](const auto& a, const auto& b) { return stage_less(a.first, b.first); });
+  }
+}
+
+void apply_diagnosis(const SurfaceDiagnosis& diagnosis, BenchRow& row) {
+  row.quads = diagnosis.quads;
+  row.genus = diagnosis.genus;
+  row.loops = diagnosis.loops;
+  row.self_intersecting_loops = diagnosis.self_intersecting_loops;
+}
+
+void apply_reference(const QualitySummary& quality, BenchRow& row) {
+  row.reference_hexes = quality.hexes;
+  row.reference_min_scaled_jacobian = quality.min_scaled_jacobian;
+  row.reference_mean_scaled_jacobian = quality.mean_scaled_jacobian;
+}
+
+PowerLawFit fit_power_law(const std::vector<double>& x, const std::vector<double>& y) {
+  if (x.size() != y.size())
+    throw InvalidInput("fit_power_law: " + std::to_string(x.size()) + " x values but " +
+                       std::to_string(y.size()) + " y values");
+  if (x.size() < 2) throw InvalidInput("fit_power_law: at least two points are needed");
+  const std::size_t n = x.size();
+  std::vector<double> lx(n), ly(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(x[i] > 0.0) || !(y[i] > 0.0) || !std::isfinite(x[i]) || !std::isfinite(y[i]))
+      throw InvalidInput("fit_power_law: point " + std::to_string(i) +
+                         " is not positive and finite; a log-log fit needs x > 0 and y > 0");
+    lx[i] = std::log(x[i]);
+    ly[i] = std::log(y[i]);
+  }
+  double mx = 0.0, my = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    mx += lx[i];
+    my += ly[i];
+  }
+  mx /= static_cast<double>(n);
+  my /= static_cast<double>(n);
+  double sxx = 0.0, sxy = 0.0, syy = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    sxx += (lx[i] - mx) * (lx[i] - mx);
+    sxy += (lx[i] - mx) * (ly[i] - my);
+    syy += (ly[i] - my) * (ly[i] - my);
+  }
+  if (sxx <= 0.0) throw InvalidInput("fit_power_law: every x is the same; nothing to fit");
+  PowerLawFit fit;
+  fit.points = n;
+  fit.exponent = sxy / sxx;
+  fit.coefficient = std::exp(my - fit.exponent * mx);
+  double residual = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double r = ly[i] - (my + fit.exponent * (lx[i] - mx));
+    residual += r * r;
+  }
+  fit.r_squared = syy > 0.0 ? 1.0 - residual / syy : 1.0;
+  return fit;
+}
+
+std::optional<PowerLawFit> fit_weave_scaling(const std::vector<BenchRow>& rows,
+                                             std::string_view rules) {
+  std::vector<double> x, y;
+  for (const BenchRow& r : rows) {
+    if (r.rules != rules || r.status != RunStatus::Ok || !r.hexes || *r.hexes == 0) continue;
+    const auto weave = r.stage_seconds("weave");
+    if (!weave || !(*weave > 0.0)) continue;
+    x.push_back(static_cast<double>(*r.hexes));
+    y.push_back(*weave);
+  }
+  if (x.size() < kMinScalingRows) return std::nullopt;
+  if (std::all_of(x.begin(), x.end(), [&](double v) { return v == x.front(); }))
+    return std::nullopt;
+  return fit_power_law(x, y);
+}
+
+void fit_scaling(BenchResults& results) {
+  results.scaling.clear();
+  for (const std::string& rules : results.rules)
+    if (const auto fit = fit_weave_scaling(results.rows, rules))
+      results.scaling.emplace_back(rules, *fit);
+}
+
+std::string format_csv(const std::vector<BenchRow>& rows) {
+  const std::vector<std::string> stages = stage_columns(rows);
+  std::ostringstream out;
+  out << "input,rules,status,reason,quads,genus,loops,self_intersecting_loops,hexes,valid,"
+         "inverted,min_scaled_jacobian,mean_scaled_jacobian";
+  for (const std::string& s : stages) out << ",seconds_" << s;
+  out << ",wall_seconds,peak_memory_mb,reference_hexes,reference_min_scaled_jacobian,"
+         "reference_mean_scaled_jacobian,reference_error\n";
+  for (const BenchRow& r : rows) {
+    out << csv_quote(r.input) << ',' << csv_quote(r.rules) << ',' << to_string(r.status) << ','
+        << csv_quote(r.reason) << ',' << cell(r.quads) << ',' << cell(r.genus) << ','
+        << cell(r.loops) << ',' << cell(r.self_intersecting_loops) << ',' << cell(r.hexes) << ','
+        << cell(r.valid) << ',' << cell(r.inverted) << ',' << cell(r.min_scaled_jacobian) << ','
+        << cell(r.mean_scaled_jacobian);
+    for (const std::string& s : stages) out << ',' << cell(r.stage_seconds(s));
+    out << ',' << number(r.wall_seconds, "%.6g") << ',' << cell(r.peak_memory_mb) << ','
+        << cell(r.reference_hexes) << ',' << cell(r.reference_min_scaled_jacobian) << ','
+        << cell(r.reference_mean_scaled_jacobian) << ',' << csv_quote(r.reference_error) << '\n';
+  }
+  return out.str();
+}
+
+std::string format_markdown_table(const std::vector<BenchRow>& rows) {
+  std::ostringstream out;
+  out << "| input | rules | quads | genus | loops | result | hexes | inverted | min SJ | mean SJ "
+         "| weave s | total s | peak MB | ref hexes | ref min SJ | ref mean SJ |\n";
+  out << "|---|---|--:|--:|--:|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+  for (const BenchRow& r : rows) {
+    std::string result(to_string(r.status));
+    if (r.status != RunStatus::Ok && !r.reason.empty())
+      result += ": " + shorten(r.reason, kMarkdownReasonLength);
+    out << "| " << md_escape(r.input) << " | " << md_escape(r.rules) << " | " << md(r.quads)
+        << " | " << md(r.genus) << " | " << md(r.loops) << " | " << md_escape(result) << " | "
+        << md(r.hexes) << " | " << md(r.inverted) << " | " << md(r.min_scaled_jacobian) << " | "
+        << md(r.mean_scaled_jacobian) << " | " << md(r.stage_seconds("weave"), "%.3g") << " | "
+        << md(r.stage_seconds("total"), "%.3g") << " | " << md(r.peak_memory_mb, "%.0f") << " | "
+        << md(r.reference_hexes) << " | " << md(r.reference_min_scaled_jacobian) << " | "
+        << md(r.reference_mean_scaled_jacobian) << " |\n";
+  }
+  return out.str();
+}
+
+std::string format_markdown(const BenchResults& results) {
+  std::ostringstream out;
+  out << "# stcweave bench: " << md_escape(results.manifest) << "\n\n";
+  std::map<std::string, std::size_t> counts;
+  for (const BenchRow& r : results.rows) ++counts[std::string(to_string(r.status))];
+  out << results.rows.size() << " runs";
+  for (RunStatus s : {RunStatus::Ok, RunStatus::Rejected, RunStatus::Failed, RunStatus::Crashed,
+                      RunStatus::Timeout, RunStatus::OutOfMemory}) {
+    const auto it = counts.find(std::string(to_string(s)));
+    if (it != counts.end()) out << ", " << it->second << " " << it->first;
+  }
+  out << " (" << results.jobs << " jobs, " << number(results.wall_seconds, "%.1f")
+      << " s wall time).\n\n";
+  out << format_markdown_table(results.rows) << "\n";
+  out << "SJ: Verdict scaled Jacobian; seconds are the pipeline's own stage timings, peak MB the "
+         "child process's maximum resident set size; ref: the reference hex mesh.\n\n";
+  out << "## Scaling\n\n";
+  for (const std::string& rules : results.rules) {
+    const auto it = std::find_if(results.scaling.begin(), results.scaling.end(),
+                                 [&](const auto& s) { return s.first == rules; });
+    if (it == results.scaling.end()) {
+      out << "- " << rules << ": no exponent (fewer than " << kMinScalingRows
+          << " successful rows with distinct hex counts)\n";
+    } else {
+      const PowerLawFit& f = it->second;
+      out << "- " << rules << ": weave seconds ~ " << number(f.coefficient, "%.3g") << " x hexes^"
+          << number(f.exponent, "%.2f") << " (least squares on log-log, " << f.points
+          << " successful rows, R^2 = " << number(f.r_squared, "%.3f") << ")\n";
+    }
+  }
+  return out.str();
+}
+
+nlohmann::json to_json(const BenchResults& results) {
+  nlohmann::json j;
+  j["manifest"] = results.manifest;
+  j["rules"] = results.rules;
+  j["jobs"] = results.jobs;
+  j["wall_seconds"] = results.wall_seconds;
+  nlohmann::json rows = nlohmann::json::array();
+  for (const BenchRow& r : results.rows) {
+    nlohmann::json row;
+    row["input"] = r.input;
+    row["rules"] = r.rules;
+    row["status"] = std::string(to_string(r.status));
+    row["reason"] = r.reason.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.reason);
+    row["quads"] = or_null(r.quads);
+    row["genus"] = or_null(r.genus);
+    row["loops"] = or_null(r.loops);
+    row["self_intersecting_loops"] = or_null(r.self_intersecting_loops);
+    row["hexes"] = or_null(r.hexes);
+    row["valid"] = or_null(r.valid);
+    row["inverted"] = or_null(r.inverted);
+    row["min_scaled_jacobian"] = or_null(r.min_scaled_jacobian);
+    row["mean_scaled_jacobian"] = or_null(r.mean_scaled_jacobian);
+    nlohmann::json seconds = nlohmann::json::object();
+    for (const auto& [stage, s] : r.seconds) seconds[stage] = s;
+    row["seconds"] = seconds;
+    row["wall_seconds"] = r.wall_seconds;
+    row["peak_memory_mb"] = or_null(r.peak_memory_mb);
+    row["reference_hexes"] = or_null(r.reference_hexes);
+    row["reference_min_scaled_jacobian"] = or_null(r.reference_min_scaled_jacobian);
+    row["reference_mean_scaled_jacobian"] = or_null(r.reference_mean_scaled_jacobian);
+    row["reference_error"] =
+        r.reference_error.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.reference_error);
+    rows.push_back(std::move(row));
+  }
+  j["rows"] = rows;
+  nlohmann::json scaling = nlohmann::json::object();
+  for (const std::string& rules : results.rules) scaling[rules] = nullptr;
+  for (const auto& [rules, f] : results.scaling)
+    scaling[rules] = {{"x", "hexes"},
+                      {"y", "weave seconds"},
+                      {"exponent", f.exponent},
+                      {"coefficient", f.coefficient},
+                      {"r_squared", f.r_squared},
+                      {"points", f.points}};
+  j["scaling"] = scaling;
+  return j;
+}
+
+}  // namespace stcweave::primal
