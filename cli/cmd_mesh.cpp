@@ -14,6 +14,7 @@
 #include "stcweave/primal/pipeline.hpp"
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/stc/hex_stc.hpp"
+#include "weave_options.hpp"
 
 namespace stcweave::cli {
 namespace {
@@ -23,13 +24,14 @@ struct MeshArgs {
   std::string output;
   std::string input_format = "auto";
   std::string output_format = "auto";
-  std::string rules = "reliable";
+  WeaveArgs weave;
   std::string report;
   std::string trace;
   bool check = false;
   bool keep_invalid = false;
   bool quiet = false;
   bool progress = false;
+  bool no_untangle = false;
 };
 
 nlohmann::json trace_json(const weave::TraceEvent& e) {
@@ -48,7 +50,15 @@ nlohmann::json trace_json(const weave::TraceEvent& e) {
                          {"strictly_on_side", c.strictly_on_side},
                          {"on_strip", c.on_strip},
                          {"weight", c.weight},
-                         {"self_intersecting", c.self_intersecting}});
+                         {"self_intersecting", c.self_intersecting},
+                         {"faces_collapsed", c.faces_collapsed},
+                         {"depth", c.depth},
+                         {"crossed_sharp", c.crossed_sharp},
+                         {"side_sharp", c.side_sharp},
+                         {"nonconvex_on_side", c.nonconvex_on_side},
+                         {"parallel_to", c.parallel_to}});
+      j["decided_by"] = e.decided_by;
+      j["filters"] = e.filters;
       j["chosen"] = cands.at(static_cast<std::size_t>(e.chosen));
       j["candidates"] = cands;
       break;
@@ -85,10 +95,16 @@ void write_text_atomically(const std::string& path, const std::string& text) {
 
 int run_mesh(const MeshArgs& a) {
   primal::MeshOptions options;
-  options.weave.rules = weave::rule_set_from_name(a.rules);
+  apply_weave_options(a.weave, options.weave);
   options.weave.check = a.check;
-  options.weave.trace = !a.trace.empty();
+  // The trace is streamed, so that a failed weave still leaves its trace behind.
+  auto trace_text = std::make_shared<std::string>();
+  if (!a.trace.empty())
+    options.weave.on_trace = [trace_text](const weave::TraceEvent& e) {
+      *trace_text += trace_json(e).dump() + "\n";
+    };
   options.keep_invalid = a.keep_invalid;
+  options.untangle = !a.no_untangle;
   const bool show_progress = a.progress || (!a.quiet && isatty(STDERR_FILENO) != 0);
   if (show_progress) {
     options.on_stage = [](const std::string& s) { std::cerr << "stcweave: " << s << "...\n"; };
@@ -103,7 +119,14 @@ int run_mesh(const MeshArgs& a) {
   const primal::MeshFile file = primal::read_mesh(
       a.input,
       a.input_format == "auto" ? primal::Format::Auto : primal::format_from_name(a.input_format));
-  const primal::MeshResult r = primal::mesh_file(file, options);
+  const primal::MeshResult r = [&] {
+    try {
+      return primal::mesh_file(file, options);
+    } catch (const Error&) {
+      if (!a.trace.empty()) write_text_atomically(a.trace, *trace_text);
+      throw;
+    }
+  }();
   const auto t0 = std::chrono::steady_clock::now();
   const stc::HexStc stc = stc::build_hex_stc(r.mesh.complex);
   const double stc_seconds =
@@ -119,7 +142,8 @@ int run_mesh(const MeshArgs& a) {
   nlohmann::json report;
   report["input"] = a.input;
   report["output"] = a.output;
-  report["rules"] = a.rules;
+  report["rules"] = a.weave.rules;
+  report["weave_options"] = weave_options_json(options.weave);
   report["quads"] = r.surface.surface.quads.size();
   report["hexes"] = r.mesh.complex.hexes.size();
   report["nodes"] = r.mesh.complex.num_nodes;
@@ -154,11 +178,7 @@ int run_mesh(const MeshArgs& a) {
                        {"total", r.seconds.total() + stc_seconds + write_seconds}};
 
   if (!a.report.empty()) write_text_atomically(a.report, report.dump(1) + "\n");
-  if (!a.trace.empty()) {
-    std::string text;
-    for (const auto& e : r.woven.trace) text += trace_json(e).dump() + "\n";
-    write_text_atomically(a.trace, text);
-  }
+  if (!a.trace.empty()) write_text_atomically(a.trace, *trace_text);
   if (!a.quiet) {
     std::cout << "input      " << a.input << ": " << r.surface.surface.quads.size() << " quads";
     if (r.orientation.flipped_quads > 0)
@@ -195,8 +215,7 @@ Action add_mesh_command(CLI::App& app) {
   sub->add_option("--input-format", args->input_format, "input format name (default: auto)");
   sub->add_option("--output-format", args->output_format,
                   "output format name: vtk, vtu, msh, msh2, medit, inp (default: auto)");
-  sub->add_option("--rules", args->rules, "loop-selection rule set: reliable")
-      ->capture_default_str();
+  add_weave_options(sub, args->weave);
   sub->add_option("--report", args->report,
                   "write a JSON report (hexes, nodes, interior_nodes, valid, sheets, chords, "
                   "quality, seconds per stage)");
@@ -207,6 +226,8 @@ Action add_mesh_command(CLI::App& app) {
                 "check the front invariants after every rule (slow, for debugging)");
   sub->add_flag("--keep-invalid", args->keep_invalid,
                 "write the mesh even when the woven complex is invalid (exit code 3 all the same)");
+  sub->add_flag("--no-untangle", args->no_untangle,
+                "keep the harmonic placement of the interior nodes (skip untangling)");
   sub->add_flag("--progress", args->progress, "print stage and weaving progress on stderr");
   sub->add_flag("-q,--quiet", args->quiet, "print nothing on success");
   return [args] { return run_mesh(*args); };

@@ -52,6 +52,17 @@ EdgeClass classify_edge(double angle, const ExtendedParameters& p) {
   return EdgeClass::SharpNonConvex;
 }
 
+void check_parameters(const ExtendedParameters& p) {
+  const bool ordered = p.sharp > 0.0 && p.sharp <= p.little_sharp && p.little_sharp <= p.flat &&
+                       p.flat <= p.little_sharp_nonconvex && p.little_sharp_nonconvex < 360.0;
+  if (!ordered)
+    throw InvalidInput("edge class thresholds out of order: need 0 < sharp (" +
+                       std::to_string(p.sharp) + ") <= little_sharp (" +
+                       std::to_string(p.little_sharp) + ") <= flat (" + std::to_string(p.flat) +
+                       ") <= little_sharp_nonconvex (" + std::to_string(p.little_sharp_nonconvex) +
+                       ") < 360 degrees");
+}
+
 std::string to_string(EdgeClass c) {
   switch (c) {
     case EdgeClass::SharpConvex:
@@ -105,6 +116,7 @@ class Weaver {
   Weaver(const stc::QuadSurface& surface, const WeaveOptions& options,
          const std::vector<std::array<double, 4>>& side_angles)
       : front_(surface), options_(options) {
+    if (options.rules == RuleSet::Extended) check_parameters(options.extended);
     if (!side_angles.empty()) {
       if (side_angles.size() != surface.quads.size())
         throw InvalidInput("weave: " + std::to_string(side_angles.size()) +
@@ -120,9 +132,8 @@ class Weaver {
     hexes_at_.resize(front_.num_nodes());
     node_mark_.assign(front_.num_nodes(), 0);
     const double q = static_cast<double>(surface.quads.size());
-    max_rules_ = options.max_rules != 0
-                     ? options.max_rules
-                     : static_cast<std::size_t>(64.0 * q * std::sqrt(q)) + 100000;
+    max_rules_ = options.max_rules != 0 ? options.max_rules
+                                        : static_cast<std::size_t>(8.0 * q * std::sqrt(q)) + 20000;
     if (auto err = front_.check_invariants())
       throw InvalidInput("the surface is not a closed oriented manifold quad surface: " + *err);
   }
@@ -131,6 +142,38 @@ class Weaver {
 
  private:
   // ---- bookkeeping ----
+  /// What a shrink changes: saved before a shrink so that a failed one can be undone.
+  struct Snapshot {
+    Front front;
+    std::vector<stc::Hex> hexes;
+    std::vector<std::vector<HexId>> hexes_at;
+    std::vector<std::array<DualLink, 6>> dual;
+    std::vector<std::int32_t> hex_shrink;
+    std::vector<std::string> hex_rule;
+    std::vector<NodeId> seam_work;
+    std::vector<NodeId> blocked_seams;
+    WeaveStats stats;
+  };
+  [[nodiscard]] Snapshot save() const {
+    return {front_,    hexes_,     hexes_at_,      dual_, hex_shrink_,
+            hex_rule_, seam_work_, blocked_seams_, stats_};
+  }
+  void restore(Snapshot&& s) {
+    const WeaveStats now = stats_;
+    front_ = std::move(s.front);
+    hexes_ = std::move(s.hexes);
+    hexes_at_ = std::move(s.hexes_at);
+    dual_ = std::move(s.dual);
+    hex_shrink_ = std::move(s.hex_shrink);
+    hex_rule_ = std::move(s.hex_rule);
+    seam_work_ = std::move(s.seam_work);
+    blocked_seams_ = std::move(s.blocked_seams);
+    stats_ = s.stats;
+    stats_.selections = now.selections;
+    stats_.failed_shrinks = now.failed_shrinks;
+    stats_.rolled_back_shrinks = now.rolled_back_shrinks + 1;
+    node_mark_.resize(front_.num_nodes());
+  }
   NodeId new_node() {
     const NodeId n = front_.new_node();
     hexes_at_.emplace_back();
@@ -178,8 +221,8 @@ class Weaver {
   /// The candidates in the order to try them, as the extended rule set ranks them; `filters`
   /// receives the trace of the filters and `reason` what decided the first one.
   std::vector<TraceCandidate> rank_extended(std::vector<TraceCandidate> all,
-                                            std::vector<std::string>* filters,
-                                            std::string* reason) const;
+                                            std::vector<std::string>* filters, std::string* reason,
+                                            std::string* decided_by) const;
   /// Weights of shrinking the loop to side A and to side B. \pre label_components() ran.
   std::array<TraceCandidate, 2> weigh(const std::vector<Passage>& strip);
   void label_components();
@@ -205,6 +248,11 @@ class Weaver {
   std::vector<std::string> hex_rule_;
   WeaveStats stats_;
   std::vector<TraceEvent> trace_;
+  [[nodiscard]] bool tracing() const { return options_.trace || options_.on_trace; }
+  void record(TraceEvent e) {
+    if (options_.on_trace) options_.on_trace(e);
+    if (options_.trace) trace_.push_back(std::move(e));
+  }
   std::vector<NodeId> seam_work_;
   std::vector<NodeId> blocked_seams_;
   std::int32_t shrink_index_ = -1;
@@ -218,6 +266,8 @@ class Weaver {
   std::vector<std::size_t> component_of_;
   std::vector<std::size_t> component_size_;
   std::uint32_t face_stamp_ = 0;
+  std::vector<std::uint32_t> side_face_mark_;  ///< faces met by a side flood (extended)
+  std::uint32_t side_face_stamp_ = 0;
 };
 
 // ---------------------------------------------------------------------------------------
@@ -275,8 +325,11 @@ HexId Weaver::make_hex(const stc::Hex& hex, std::span<const FaceIndex> used, con
                                                                   : -1;
   }
   // Angles carried over (seed sect. 6): a new face opposite a used face F takes, on each
-  // side, the angle of the parallel side of F (a hex edge joins their corners). Faces not
-  // opposite a used face carry nothing (flat).
+  // side, the angle F itself holds on the parallel side (a hex edge joins their corners).
+  // Faces not opposite a used face carry nothing (flat). F's value is used as stored, not
+  // combined with its current neighbour (edge_angle): measured, the combined value breaks
+  // the structured results on boxes (cube_tf_medium 6859 -> 8655 hexes) although it helps
+  // the larger L-block; see docs/extended-rules.md.
   std::array<std::array<float, 4>, 6> angles_of{};
   for (int lf = 0; lf < 6; ++lf) {
     auto& out = angles_of[static_cast<std::size_t>(lf)];
@@ -313,11 +366,10 @@ HexId Weaver::make_hex(const stc::Hex& hex, std::span<const FaceIndex> used, con
   }
   for (int lf = 0; lf < 6; ++lf) {
     if (face_used[static_cast<std::size_t>(lf)] != kNoFace) continue;
-    const FaceIndex f =
-        front_.add_face(stc::reversed(stc::hex_face(hex, lf)),
-                        FaceOwner{FaceOwner::Kind::Hex, id.value(), static_cast<std::int8_t>(lf)},
-                        depth_of[static_cast<std::size_t>(lf)],
-                        angles_of[static_cast<std::size_t>(lf)]);
+    const FaceIndex f = front_.add_face(
+        stc::reversed(stc::hex_face(hex, lf)),
+        FaceOwner{FaceOwner::Kind::Hex, id.value(), static_cast<std::int8_t>(lf)},
+        depth_of[static_cast<std::size_t>(lf)], angles_of[static_cast<std::size_t>(lf)]);
     push_nodes_of(f);
   }
   for (NodeId n : hex) hexes_at_[n.index()].push_back(id);
@@ -327,7 +379,7 @@ HexId Weaver::make_hex(const stc::Hex& hex, std::span<const FaceIndex> used, con
 
 void Weaver::after_rule(const char* rule, NodeId node, std::vector<std::string> faces, HexId hex) {
   ++rules_applied_;
-  if (options_.trace) {
+  if (tracing()) {
     TraceEvent e;
     e.kind = TraceEvent::Kind::Rule;
     e.step = rules_applied_;
@@ -336,7 +388,7 @@ void Weaver::after_rule(const char* rule, NodeId node, std::vector<std::string> 
     e.faces = std::move(faces);
     e.hex = hex;
     e.shrink = shrink_index_;
-    trace_.push_back(std::move(e));
+    record(std::move(e));
   }
   if (options_.check) {
     if (auto err = front_.check_invariants())
@@ -647,7 +699,7 @@ bool Weaver::try_cross(NodeId v, std::string* why) {
   }
   const NodeId w = new_node();
   const std::array<FaceIndex, 3> used{f1, f2, f3};
-  make_hex({v, b, xab, a, c, xbc, w, xca}, used, "cross", v);
+  make_hex({v, b, xab, a, c, xbc, w, xca}, used, relax_geometry_ ? "cross-relaxed" : "cross", v);
   ++stats_.crosses;
   return true;
 }
@@ -870,15 +922,12 @@ void Weaver::label_components() {
 std::array<TraceCandidate, 2> Weaver::extended_properties(const std::vector<Passage>& strip) {
   std::array<TraceCandidate, 2> c = weigh(strip);  // marks the strip faces (face_stamp_)
   const ExtendedParameters& par = options_.extended;
-  std::size_t strip_faces = 0;
-  {
-    const std::uint32_t mark = next_stamp();
-    std::vector<FaceIndex> seen;
-    for (const Passage& p : strip)
-      if (std::find(seen.begin(), seen.end(), p.face) == seen.end()) seen.push_back(p.face);
-    strip_faces = seen.size();
-    (void)mark;
-  }
+  std::vector<FaceIndex> strip_face_list;
+  strip_face_list.reserve(strip.size());
+  for (const Passage& p : strip) strip_face_list.push_back(p.face);
+  std::sort(strip_face_list.begin(), strip_face_list.end());
+  const auto strip_faces = static_cast<std::size_t>(
+      std::unique(strip_face_list.begin(), strip_face_list.end()) - strip_face_list.begin());
   std::size_t crossed = 0;
   std::array<std::size_t, 2> side_sharp{0, 0};
   std::array<std::size_t, 2> nonconvex{0, 0};
@@ -904,15 +953,20 @@ std::array<TraceCandidate, 2> Weaver::extended_properties(const std::vector<Pass
       stack.push_back(at(n, d == 0 ? p.entry + 3 : p.entry + 2));
     }
     std::vector<FaceIndex> faces;
-    std::vector<char> face_seen(front_.face_capacity(), 0);
+    if (side_face_mark_.size() < front_.face_capacity())
+      side_face_mark_.resize(front_.face_capacity(), 0);
+    if (++side_face_stamp_ == 0) {
+      std::fill(side_face_mark_.begin(), side_face_mark_.end(), 0);
+      side_face_stamp_ = 1;
+    }
     while (!stack.empty()) {
       const NodeId n = stack.back();
       stack.pop_back();
       for (FaceIndex f : front_.faces_at(n)) {
         if (face_mark_[static_cast<std::size_t>(f)] == face_stamp_ ||
-            face_seen[static_cast<std::size_t>(f)] != 0)
+            side_face_mark_[static_cast<std::size_t>(f)] == side_face_stamp_)
           continue;
-        face_seen[static_cast<std::size_t>(f)] = 1;
+        side_face_mark_[static_cast<std::size_t>(f)] = side_face_stamp_;
         faces.push_back(f);
         for (NodeId m : front_.face(f).nodes) {
           if (node_mark_[m.index()] == node_seen) continue;
@@ -927,8 +981,8 @@ std::array<TraceCandidate, 2> Weaver::extended_properties(const std::vector<Pass
       if (fd > 0 && (depth == 0 || fd < depth)) depth = fd;
       for (int k = 0; k < 4; ++k) {
         const FaceSide g = front_.across(f, k);
-        const bool once = g.face == kNoFace || face_mark_[static_cast<std::size_t>(g.face)] == face_stamp_ ||
-                          f < g.face;
+        const bool once = g.face == kNoFace ||
+                          face_mark_[static_cast<std::size_t>(g.face)] == face_stamp_ || f < g.face;
         if (once && edge_angle(f, k) > par.flat) ++nonconvex[static_cast<std::size_t>(d)];
       }
     }
@@ -953,8 +1007,8 @@ std::int32_t Weaver::parallel_loop(const std::vector<Passage>& strip, int side,
     const FaceSide g = front_.across(p.face, s);
     if (g.face == kNoFace) return -1;
     // the loop that has this edge as a side edge enters g perpendicularly to it
-    const std::int32_t l = loop_of_[static_cast<std::size_t>(g.face)]
-                                   [static_cast<std::size_t>((g.index + 1) % 2)];
+    const std::int32_t l =
+        loop_of_[static_cast<std::size_t>(g.face)][static_cast<std::size_t>((g.index + 1) % 2)];
     if (l < 0 || l == self || (other >= 0 && l != other)) return -1;
     other = l;
   }
@@ -964,7 +1018,8 @@ std::int32_t Weaver::parallel_loop(const std::vector<Passage>& strip, int side,
 
 std::vector<TraceCandidate> Weaver::rank_extended(std::vector<TraceCandidate> all,
                                                   std::vector<std::string>* filters,
-                                                  std::string* reason) const {
+                                                  std::string* reason,
+                                                  std::string* decided_by) const {
   const ExtendedParameters& par = options_.extended;
   const auto topological = [](const TraceCandidate& p, const TraceCandidate& q) {
     if (p.faces_collapsed != q.faces_collapsed) return p.faces_collapsed < q.faces_collapsed;
@@ -990,6 +1045,7 @@ std::vector<TraceCandidate> Weaver::rank_extended(std::vector<TraceCandidate> al
     }
     if (!kept.empty()) set = std::move(kept);
     note(name, before, false);
+    if (set.size() == 1 && decided_by->empty()) *decided_by = name;
   };
   bool decided = false;
   if (par.parallel_crossing) {
@@ -1002,27 +1058,35 @@ std::vector<TraceCandidate> Weaver::rank_extended(std::vector<TraceCandidate> al
       *reason = "parallel crossing: runs along loop " + std::to_string(set.front().parallel_to) +
                 " across sharp convex edges; fewest faces collapsed";
       decided = true;
+      *decided_by = "parallel_crossing";
     }
   }
   if (!decided) {
     if (par.nonconvex_filter)
-      keep("nonconvex", [](const TraceCandidate& c) { return c.nonconvex_on_side == 0; }, true);
+      keep(
+          "nonconvex", [](const TraceCandidate& c) { return c.nonconvex_on_side == 0; }, true);
     if (par.depth_filter) {
       std::int32_t least = std::numeric_limits<std::int32_t>::max();
       for (const auto& c : set) least = std::min(least, c.depth);
-      keep("depth", [least](const TraceCandidate& c) { return c.depth == least; }, false);
+      keep(
+          "depth", [least](const TraceCandidate& c) { return c.depth == least; }, false);
     }
     if (par.first_convex_filter)
-      keep("first_convex", [](const TraceCandidate& c) { return c.crossed_sharp > 0; }, true);
+      keep(
+          "first_convex", [](const TraceCandidate& c) { return c.crossed_sharp > 0; }, true);
     if (par.second_convex_filter) {
       double best = 0.0;
       const auto ratio = [](const TraceCandidate& c) {
-        return static_cast<double>(c.side_sharp) / static_cast<double>(std::max<std::size_t>(1, c.length));
+        return static_cast<double>(c.side_sharp) /
+               static_cast<double>(std::max<std::size_t>(1, c.length));
       };
       for (const auto& c : set) best = std::max(best, ratio(c));
-      keep("second_convex", [&](const TraceCandidate& c) { return ratio(c) >= best - 1e-12; }, false);
+      keep(
+          "second_convex", [&](const TraceCandidate& c) { return ratio(c) >= best - 1e-12; },
+          false);
     }
     filters->push_back("topological:" + std::to_string(set.size()));
+    if (decided_by->empty()) *decided_by = "topological";
     *reason = "filters " + [&] {
       std::string joined;
       for (const auto& f : *filters) joined += (joined.empty() ? "" : ", ") + f;
@@ -1124,8 +1188,7 @@ std::optional<std::string> Weaver::shrink(const std::vector<Passage>& initial, i
       if (applied) break;
       if (reasons.size() < 600) reasons += (reasons.empty() ? "" : "; ") + v.str() + ": " + why;
     }
-    if (!applied && extended() && options_.extended.flat_cross_precondition &&
-        !relax_geometry_) {
+    if (!applied && extended() && options_.extended.flat_cross_precondition && !relax_geometry_) {
       relax_geometry_ = true;  // RWW: geometric preconditions give way to complete the weave
       ++stats_.relaxed_preconditions;
       continue;
@@ -1156,58 +1219,79 @@ WeaveResult Weaver::run() {
     // Ranking: loops that do not cross themselves first, then the smallest weight, then the
     // lowest loop index (loops are enumerated from the lowest front face slot), side A first.
     std::vector<std::string> filters;
+    std::string decided_by = "weight";
     std::string first_reason = "smallest weight (strictly on side + on strip)";
     if (extended()) {
-      candidates = rank_extended(std::move(candidates), &filters, &first_reason);
+      decided_by.clear();
+      candidates = rank_extended(std::move(candidates), &filters, &first_reason, &decided_by);
     } else {
       // Ranking: loops that do not cross themselves first, then the smallest weight, then the
       // lowest loop index (loops are enumerated from the lowest front face slot), side A
       // first.
       std::stable_sort(candidates.begin(), candidates.end(),
                        [](const TraceCandidate& p, const TraceCandidate& q) {
-                         if (p.self_intersecting != q.self_intersecting) return !p.self_intersecting;
+                         if (p.self_intersecting != q.self_intersecting)
+                           return !p.self_intersecting;
                          return p.weight < q.weight;
                        });
     }
     ++stats_.selections;
     bool progressed = false;
     std::string failures;
-    for (std::size_t ci = 0; ci < candidates.size(); ++ci) {
-      const TraceCandidate& c = candidates[ci];
-      if (options_.trace) {
-        TraceEvent e;
-        e.kind = TraceEvent::Kind::Selection;
-        e.step = rules_applied_;
-        e.candidates = candidates;
-        e.chosen = static_cast<std::int32_t>(ci);
-        e.reason = ci == 0 ? first_reason : "previous candidates failed to shrink";
-        e.filters = filters;
-        e.shrink = shrink_index_ + 1;
-        trace_.push_back(std::move(e));
-      }
-      ++shrink_index_;
-      const std::size_t before = rules_applied_;
-      const auto failure = shrink(loops[static_cast<std::size_t>(c.loop)], c.side);
-      if (!failure) {
-        ++stats_.shrinks;
-        progressed = true;
-        break;
-      }
-      ++stats_.failed_shrinks;
-      if (options_.trace) {
-        TraceEvent e;
-        e.kind = TraceEvent::Kind::ShrinkFailed;
-        e.step = rules_applied_;
-        e.reason = *failure;
-        e.shrink = shrink_index_;
-        trace_.push_back(std::move(e));
-      }
-      if (failures.size() < 2000)
-        failures +=
-            "\n  loop " + std::to_string(c.loop) + " side " + "AB"[c.side] + ": " + *failure;
-      if (rules_applied_ != before) {
-        progressed = true;  // the front changed: select again
-        break;
+    // Backtracking: a shrink that ends blocked is undone and the next candidate is tried;
+    // when every candidate fails from this front, the first one's partial shrink is kept
+    // (the front changed, so the selection starts again) as the last resort.
+    const bool backtrack = options_.backtrack;
+    for (std::size_t attempt = 0; attempt < (backtrack ? 2U : 1U) && !progressed; ++attempt) {
+      const bool last_resort = backtrack && attempt == 1;
+      const std::size_t count =
+          last_resort ? std::min<std::size_t>(1, candidates.size()) : candidates.size();
+      for (std::size_t ci = 0; ci < count; ++ci) {
+        const TraceCandidate& c = candidates[ci];
+        if (tracing()) {
+          TraceEvent e;
+          e.kind = TraceEvent::Kind::Selection;
+          e.step = rules_applied_;
+          e.candidates = candidates;
+          e.chosen = static_cast<std::int32_t>(ci);
+          e.reason = last_resort ? "every candidate failed: the first one's partial shrink is kept"
+                     : ci == 0   ? first_reason
+                                 : "previous candidates failed to shrink";
+          e.filters = filters;
+          e.decided_by = ci == 0 && !last_resort ? decided_by : "fallback";
+          e.shrink = shrink_index_ + 1;
+          record(std::move(e));
+        }
+        ++shrink_index_;
+        const std::size_t before = rules_applied_;
+        std::optional<Snapshot> saved;
+        if (backtrack && !last_resort) saved = save();
+        const auto failure = shrink(loops[static_cast<std::size_t>(c.loop)], c.side);
+        if (!failure) {
+          ++stats_.shrinks;
+          progressed = true;
+          break;
+        }
+        ++stats_.failed_shrinks;
+        if (tracing()) {
+          TraceEvent e;
+          e.kind = TraceEvent::Kind::ShrinkFailed;
+          e.step = rules_applied_;
+          e.reason = *failure + (saved ? " (undone)" : "");
+          e.shrink = shrink_index_;
+          record(std::move(e));
+        }
+        if (failures.size() < 2000)
+          failures +=
+              "\n  loop " + std::to_string(c.loop) + " side " + "AB"[c.side] + ": " + *failure;
+        if (saved) {
+          restore(std::move(*saved));
+          continue;
+        }
+        if (rules_applied_ != before) {
+          progressed = true;  // the front changed: select again
+          break;
+        }
       }
     }
     if (!progressed)

@@ -19,7 +19,13 @@
 namespace stcweave::primal {
 
 struct MeshOptions {
-  weave::WeaveOptions weave;
+  /// Weaving options. The pipeline knows the geometry, so its default rule set is
+  /// `extended` (the library's `weave::weave` alone defaults to `reliable`).
+  weave::WeaveOptions weave = [] {
+    weave::WeaveOptions o;
+    o.rules = weave::RuleSet::Extended;
+    return o;
+  }();
   /// Return an invalid complex instead of throwing InternalError (for debugging).
   bool keep_invalid = false;
   /// Untangle and optimise the interior nodes after the harmonic placement (stage

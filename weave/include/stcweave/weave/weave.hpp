@@ -81,6 +81,10 @@ struct ExtendedParameters {
 /// The class of an edge of dihedral angle `angle` (degrees).
 [[nodiscard]] EdgeClass classify_edge(double angle, const ExtendedParameters& parameters);
 [[nodiscard]] std::string to_string(EdgeClass edge_class);
+/// \throw InvalidInput unless 0 < sharp <= little_sharp <= flat <= little_sharp_nonconvex < 360.
+void check_parameters(const ExtendedParameters& parameters);
+
+struct TraceEvent;
 
 struct WeaveOptions {
   RuleSet rules = RuleSet::Reliable;
@@ -89,7 +93,15 @@ struct WeaveOptions {
   bool check = false;
   /// Record one trace event per loop selection and per rule application.
   bool trace = false;
-  /// Give up after this many rule applications; 0 chooses 64 * quads^1.5 + 10^5.
+  /// Undo a loop shrink that ends blocked and try the next candidate (the front is saved
+  /// before each shrink); when all fail, the first candidate's partial shrink is kept. Off:
+  /// a failed shrink's partial work is always kept.
+  bool backtrack = true;
+  /// When set, every trace event is also handed to it as it happens (independently of
+  /// `trace`), so that the trace of a weave that throws is not lost.
+  std::function<void(const TraceEvent&)> on_trace;
+  /// Give up after this many rule applications; 0 chooses 8 * quads^1.5 + 20000 (a k x k x k
+  /// box needs about 3 k^3 = 0.02 quads^1.5).
   std::size_t max_rules = 0;
   /// Called every `progress_every` rules when set.
   std::function<void(const WeaveProgress&)> progress;
@@ -134,8 +146,14 @@ struct TraceEvent {
   /// Selection: the filters applied in order, each with the candidates it left
   /// ("nonconvex:12", "depth:4", ...; "relaxed" when a filter would have left none).
   std::vector<std::string> filters;
+  /// Selection: what decided the choice: "weight" (reliable), "parallel_crossing", the first
+  /// filter after which one candidate was left, "topological" (fewest faces collapsed among
+  /// several), or "fallback" when earlier candidates failed to shrink.
+  std::string decided_by;
   // Rule: which rule, at which node, on which front faces (their whiskers), which hex.
-  std::string rule;  ///< "seam", "seam-coincident", "cross", "blind-chord"
+  /// "seam", "seam-coincident", "cross", "cross-relaxed" (geometric precondition lifted),
+  /// "blind-chord"
+  std::string rule;
   NodeId node;
   std::vector<std::string> faces;
   HexId hex;
@@ -153,6 +171,8 @@ struct WeaveStats {
   std::size_t blocked_seams = 0;  ///< seam attempts refused by a precondition
   /// Shrink steps in which the geometric preconditions were lifted (extended only).
   std::size_t relaxed_preconditions = 0;
+  /// Failed shrinks that were undone (`WeaveOptions::backtrack`).
+  std::size_t rolled_back_shrinks = 0;
 };
 
 struct WeaveResult {

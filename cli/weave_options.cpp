@@ -1,0 +1,78 @@
+#include "weave_options.hpp"
+
+#include "stcweave/stc/errors.hpp"
+
+namespace stcweave::cli {
+
+void add_weave_options(CLI::App* sub, WeaveArgs& args) {
+  weave::ExtendedParameters& p = args.extended;
+  const std::string group = "Weaving";
+  sub->add_option("--rules", args.rules,
+                  "loop-selection rule set: extended (seed sect. 4-7: geometry-aware filters) or "
+                  "reliable (smallest topological weight only)")
+      ->capture_default_str()
+      ->group(group);
+  sub->add_option("--sharp", p.sharp,
+                  "extended: dihedral angle (degrees) up to which an edge is sharp convex")
+      ->capture_default_str()
+      ->group(group);
+  sub->add_option("--little-sharp", p.little_sharp,
+                  "extended: angle up to which an edge is a little sharp convex")
+      ->capture_default_str()
+      ->group(group);
+  sub->add_option("--flat", p.flat, "extended: angle up to which an edge is flat")
+      ->capture_default_str()
+      ->group(group);
+  sub->add_option("--little-sharp-nonconvex", p.little_sharp_nonconvex,
+                  "extended: angle up to which an edge is a little sharp non-convex (above: "
+                  "sharp non-convex)")
+      ->capture_default_str()
+      ->group(group);
+  const auto off = [&](const std::string& name, bool& flag, const std::string& what) {
+    sub->add_flag_function(
+           "--no-" + name, [&flag](std::int64_t) { flag = false; }, "extended: " + what)
+        ->group(group);
+  };
+  off("parallel-crossing", p.parallel_crossing,
+      "switch off the parallel crossing rule (sect. 4.5)");
+  off("nonconvex-filter", p.nonconvex_filter, "switch off the non-convex filter (sect. 4.4)");
+  off("depth-filter", p.depth_filter, "switch off the depth filter (sect. 4.1)");
+  off("first-convex-filter", p.first_convex_filter,
+      "switch off the first convex filter (sect. 4.2)");
+  off("second-convex-filter", p.second_convex_filter,
+      "switch off the second convex filter (sect. 4.3)");
+  off("flat-cross-precondition", p.flat_cross_precondition,
+      "switch off the geometric precondition of the cross (no cross on a too flat corner)");
+  sub->add_option("--max-rules", args.max_rules,
+                  "give up weaving after this many rule applications (0: 8 quads^1.5 + 20000)")
+      ->capture_default_str()
+      ->group(group);
+}
+
+void apply_weave_options(const WeaveArgs& args, weave::WeaveOptions& options) {
+  options.rules = weave::rule_set_from_name(args.rules);
+  options.extended = args.extended;
+  options.max_rules = args.max_rules;
+  weave::check_parameters(options.extended);
+}
+
+nlohmann::json weave_options_json(const weave::WeaveOptions& options) {
+  nlohmann::json j;
+  j["rules"] = weave::to_string(options.rules);
+  if (options.rules == weave::RuleSet::Extended) {
+    const weave::ExtendedParameters& p = options.extended;
+    j["sharp"] = p.sharp;
+    j["little_sharp"] = p.little_sharp;
+    j["flat"] = p.flat;
+    j["little_sharp_nonconvex"] = p.little_sharp_nonconvex;
+    j["parallel_crossing"] = p.parallel_crossing;
+    j["nonconvex_filter"] = p.nonconvex_filter;
+    j["depth_filter"] = p.depth_filter;
+    j["first_convex_filter"] = p.first_convex_filter;
+    j["second_convex_filter"] = p.second_convex_filter;
+    j["flat_cross_precondition"] = p.flat_cross_precondition;
+  }
+  return j;
+}
+
+}  // namespace stcweave::cli
