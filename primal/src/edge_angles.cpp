@@ -10,7 +10,9 @@ std::vector<std::array<double, 4>> dihedral_angles(const SurfaceMesh& mesh) {
   const auto& quads = mesh.surface.quads;
   std::vector<std::array<double, 4>> angles(quads.size(), {180.0, 180.0, 180.0, 180.0});
   std::vector<Eigen::Vector3d> normal(quads.size());
-  const auto point = [&](NodeId n) -> Eigen::Vector3d { return mesh.points.row(n.value()).transpose(); };
+  const auto point = [&](NodeId n) -> Eigen::Vector3d {
+    return mesh.points.row(n.value()).transpose();
+  };
   for (std::size_t q = 0; q < quads.size(); ++q) {
     const auto& Q = quads[q];
     const Eigen::Vector3d n = (point(Q[2]) - point(Q[0])).cross(point(Q[3]) - point(Q[1]));
@@ -26,7 +28,8 @@ std::vector<std::array<double, 4>> dihedral_angles(const SurfaceMesh& mesh) {
   };
   for (std::size_t q = 0; q < quads.size(); ++q)
     for (int i = 0; i < 4; ++i)
-      directed[key(quads[q][static_cast<std::size_t>(i)], quads[q][static_cast<std::size_t>((i + 1) % 4)])] = {q, i};
+      directed[key(quads[q][static_cast<std::size_t>(i)],
+                   quads[q][static_cast<std::size_t>((i + 1) % 4)])] = {q, i};
   for (std::size_t q = 0; q < quads.size(); ++q) {
     for (int i = 0; i < 4; ++i) {
       const NodeId a = quads[q][static_cast<std::size_t>(i)];
