@@ -338,8 +338,8 @@ int run_bench(const BenchArgs& a) {
     std::printf("bench: %zu runs, %zu ok, in %.1f s; results in %s/results.{md,csv,json}\n",
                 results.rows.size(), ok, results.wall_seconds, out.string().c_str());
     for (const auto& [r, fit] : results.scaling)
-      std::printf("scaling (%s): weave seconds ~ hexes^%.2f over %zu rows (R^2 %.3f)\n",
-                  r.c_str(), fit.exponent, fit.points, fit.r_squared);
+      std::printf("scaling (%s): weave seconds ~ hexes^%.2f over %zu rows (R^2 %.3f)\n", r.c_str(),
+                  fit.exponent, fit.points, fit.r_squared);
   }
   return kSuccess;
 }
@@ -369,8 +369,7 @@ Action add_bench_command(CLI::App& app) {
   sub->add_option("--timeout", args->timeout, "wall-time limit per run, in seconds")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  sub->add_option("--memory", args->memory_mb,
-                  "address-space limit per run, in MB (0: no limit)")
+  sub->add_option("--memory", args->memory_mb, "address-space limit per run, in MB (0: no limit)")
       ->capture_default_str();
   sub->add_flag("-q,--quiet", args->quiet, "no progress lines, no summary");
   return [args] { return run_bench(*args); };

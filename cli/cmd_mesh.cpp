@@ -166,7 +166,10 @@ int run_mesh(const MeshArgs& a) {
                      {"coincident_glues", s.coincident_glues},
                      {"crosses", s.crosses},
                      {"blind_chords", s.blind_chords},
-                     {"blocked_seams", s.blocked_seams}};
+                     {"blocked_seams", s.blocked_seams},
+                     {"relaxed_preconditions", s.relaxed_preconditions},
+                     {"rolled_back_shrinks", s.rolled_back_shrinks},
+                     {"parallel_merges", s.parallel_merges}};
   report["seconds"] = {{"diagnose", r.seconds.diagnose},
                        {"orient", r.seconds.orient},
                        {"weave", r.seconds.weave},

@@ -22,6 +22,7 @@
 #include <limits>
 #include <optional>
 #include <span>
+#include <unordered_map>
 
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/weave/front.hpp"
@@ -206,6 +207,11 @@ class Weaver {
   bool try_seam(NodeId v, std::string* why);
   bool try_cross(NodeId v, std::string* why);
   bool try_blind_chord(NodeId v, const std::vector<Passage>& strip, std::string* why);
+  bool try_parallel_merging(const std::vector<Passage>& strip, std::string* why);
+  /// Tries parallel merging on every loop that qualifies (sharp convex side edges on both
+  /// sides, as many faces on either side); true when one was applied.
+  bool merge_parallel(const std::vector<std::vector<Passage>>& loops,
+                      const std::vector<TraceCandidate>& candidates);
   void seam_fixpoint();
 
   // ---- loops ----
@@ -741,6 +747,212 @@ bool Weaver::try_blind_chord(NodeId v, const std::vector<Passage>& strip, std::s
   return false;
 }
 
+/// Parallel merging, seed sect. 5.1 (Fig. 10), as we read it (docs/extended-rules.md): the
+/// strip of the central loop l is one face high, its side edges are sharp on both sides, and
+/// the strip's transversal edges map the rim of the region on side A (bounded by ll) onto
+/// the rim of the region on side B (bounded by lr). When that map extends, face by face, to
+/// an isomorphism between the two regions (two discs facing each other), ll and lr are the
+/// two ends of one sheet: it is closed at once by one hex per face pair (the first chord
+/// made, along the strip, is the torus of hexes of the seed). No node is created or merged.
+bool Weaver::try_parallel_merging(const std::vector<Passage>& strip, std::string* why) {
+  if (face_mark_.size() < front_.face_capacity()) face_mark_.resize(front_.face_capacity(), 0);
+  if (++face_stamp_ == 0) {
+    std::fill(face_mark_.begin(), face_mark_.end(), 0);
+    face_stamp_ = 1;
+  }
+  const std::uint32_t strip_stamp = face_stamp_;
+  for (const Passage& p : strip) {
+    if (face_mark_[static_cast<std::size_t>(p.face)] == strip_stamp) {
+      *why = "the strip passes a face twice";
+      return false;
+    }
+    face_mark_[static_cast<std::size_t>(p.face)] = strip_stamp;
+  }
+  std::unordered_map<std::size_t, NodeId> image, preimage;
+  const auto assign = [&](NodeId a, NodeId b) {
+    const auto ia = image.find(a.index());
+    if (ia != image.end()) return ia->second == b;
+    const auto ib = preimage.find(b.index());
+    if (ib != preimage.end()) return false;
+    if (image.count(b.index()) != 0 || preimage.count(a.index()) != 0) return false;
+    image.emplace(a.index(), b);
+    preimage.emplace(b.index(), a);
+    return true;
+  };
+  std::vector<FaceIndex> queue;
+  for (const Passage& p : strip) {
+    const stc::Quad& n = front_.face(p.face).nodes;
+    if (!assign(at(n, p.entry), at(n, p.entry + 1)) ||
+        !assign(at(n, p.entry + 3), at(n, p.entry + 2))) {
+      *why = "the strip's transversal edges do not map one rim onto the other";
+      return false;
+    }
+    for (int side : {(p.entry + 3) % 4, (p.entry + 1) % 4}) {
+      const FaceSide g = front_.across(p.face, side);
+      if (g.face == kNoFace || face_mark_[static_cast<std::size_t>(g.face)] == strip_stamp) {
+        *why = "the strip is more than one face high";
+        return false;
+      }
+      if (side == (p.entry + 3) % 4) queue.push_back(g.face);
+    }
+  }
+  // Extend the map over side A's region, face by face, from the rim inward.
+  std::vector<std::uint32_t>& seen = side_face_mark_;
+  if (seen.size() < front_.face_capacity()) seen.resize(front_.face_capacity(), 0);
+  if (++side_face_stamp_ == 0) {
+    std::fill(seen.begin(), seen.end(), 0);
+    side_face_stamp_ = 1;
+  }
+  const std::uint32_t in_a = side_face_stamp_;
+  std::vector<std::pair<FaceIndex, FaceIndex>> pairs;
+  std::vector<FaceIndex> images;
+  for (FaceIndex f : queue) seen[static_cast<std::size_t>(f)] = in_a;
+  for (std::size_t qi = 0; qi < queue.size(); ++qi) {
+    const FaceIndex f = queue[qi];
+    const stc::Quad& F = front_.face(f).nodes;
+    int k = -1;
+    for (int j = 0; j < 4 && k < 0; ++j)
+      if (image.count(at(F, j).index()) != 0 && image.count(at(F, j + 1).index()) != 0) k = j;
+    if (k < 0) {  // reached before any of its edges was mapped: try again later
+      if (qi + queue.size() > 8 * front_.num_faces()) {
+        *why = "the region on side A is not a disc the strip maps";
+        return false;
+      }
+      queue.push_back(f);
+      continue;
+    }
+    const NodeId u = at(F, k), v = at(F, k + 1), w = at(F, k + 2), x = at(F, k + 3);
+    const FaceSide gs = front_.find_edge(image.at(v.index()), image.at(u.index()));
+    if (gs.face == kNoFace || face_mark_[static_cast<std::size_t>(gs.face)] == strip_stamp ||
+        seen[static_cast<std::size_t>(gs.face)] == in_a) {
+      *why = "no face of side B faces " + front_.face(f).owner.str();
+      return false;
+    }
+    const stc::Quad& G = front_.face(gs.face).nodes;
+    if (!assign(x, at(G, gs.index + 2)) || !assign(w, at(G, gs.index + 3))) {
+      *why = "the two regions differ at " + front_.face(f).owner.str();
+      return false;
+    }
+    const FaceOwner of = front_.face(f).owner, og = front_.face(gs.face).owner;
+    if (of.is_hex() && og.is_hex() && of.id == og.id) {
+      *why = "the faces " + of.str() + " and " + og.str() + " belong to one hex";
+      return false;
+    }
+    pairs.emplace_back(f, gs.face);
+    images.push_back(gs.face);
+    for (int j = 0; j < 4; ++j) {
+      const FaceSide h = front_.across(f, j);
+      if (h.face == kNoFace || face_mark_[static_cast<std::size_t>(h.face)] == strip_stamp ||
+          seen[static_cast<std::size_t>(h.face)] == in_a)
+        continue;
+      seen[static_cast<std::size_t>(h.face)] = in_a;
+      queue.push_back(h.face);
+    }
+  }
+  std::sort(images.begin(), images.end());
+  if (std::adjacent_find(images.begin(), images.end()) != images.end()) {
+    *why = "two faces of side A face the same face of side B";
+    return false;
+  }
+  for (FaceIndex g : images)
+    if (seen[static_cast<std::size_t>(g)] == in_a) {
+      *why = "the regions on the two sides overlap";
+      return false;
+    }
+  // Every face of the front component must be used: the strip, side A and side B.
+  const std::size_t component = component_of_[front_.face(strip.front().face).nodes[0].index()];
+  std::size_t faces_in_component = 0;
+  for (std::size_t fi = 0; fi < front_.face_capacity(); ++fi) {
+    const auto f = static_cast<FaceIndex>(fi);
+    if (front_.is_alive(f) && component_of_[front_.face(f).nodes[0].index()] == component)
+      ++faces_in_component;
+  }
+  if (faces_in_component != strip.size() + 2 * pairs.size()) {
+    *why = "the strip and the two regions are not the whole front component";
+    return false;
+  }
+  // No new hex may share two faces with one hex.
+  const auto hex_of = [this](const stc::Hex& hex, int lf) -> FaceIndex {
+    const auto key = sorted_nodes(stc::hex_face(hex, lf));
+    for (FaceIndex g : front_.faces_at(
+             hex[static_cast<std::size_t>(stc::kHexFaces[static_cast<std::size_t>(lf)][0])]))
+      if (sorted_nodes(front_.face(g).nodes) == key) return g;
+    return kNoFace;
+  };
+  std::vector<stc::Hex> hexes;
+  hexes.reserve(pairs.size());
+  for (const auto& [f, g] : pairs) {
+    const stc::Quad F = front_.face(f).nodes;
+    const auto img = [&](NodeId n) { return image.at(n.index()); };
+    hexes.push_back({F[0], F[3], F[2], F[1], img(F[0]), img(F[3]), img(F[2]), img(F[1])});
+    std::vector<std::int32_t> owners;
+    for (int lf = 0; lf < 6; ++lf) {
+      const FaceIndex h = hex_of(hexes.back(), lf);
+      if (h != kNoFace && front_.face(h).owner.is_hex()) owners.push_back(front_.face(h).owner.id);
+    }
+    std::sort(owners.begin(), owners.end());
+    if (std::adjacent_find(owners.begin(), owners.end()) != owners.end()) {
+      *why = "a new hex would share two faces with one hex";
+      return false;
+    }
+  }
+  // Apply: each hex uses its two disc faces and whatever of its side faces is on the front
+  // (strip faces on the rim, faces of the hexes just made inside).
+  for (std::size_t i = 0; i < hexes.size(); ++i) {
+    std::vector<FaceIndex> used;
+    for (int lf = 0; lf < 6; ++lf) {
+      const FaceIndex h = hex_of(hexes[i], lf);
+      if (h != kNoFace) used.push_back(h);
+    }
+    make_hex(hexes[i], used, "parallel-merge", hexes[i][0]);
+  }
+  return true;
+}
+
+bool Weaver::merge_parallel(const std::vector<std::vector<Passage>>& loops,
+                            const std::vector<TraceCandidate>& candidates) {
+  for (std::size_t i = 0; i + 1 < candidates.size(); i += 2) {
+    const TraceCandidate& a = candidates[i];
+    const TraceCandidate& b = candidates[i + 1];
+    if (a.self_intersecting || a.length < 3 || a.side_sharp != a.length ||
+        b.side_sharp != b.length || a.faces_collapsed != b.faces_collapsed)
+      continue;
+    const auto& strip = loops[static_cast<std::size_t>(a.loop)];
+    std::string why;
+    const std::size_t before = rules_applied_;
+    if (tracing()) {
+      TraceEvent e;
+      e.kind = TraceEvent::Kind::Selection;
+      e.step = rules_applied_;
+      e.candidates = {a, b};
+      e.chosen = 0;
+      e.reason = "parallel merging: loop " + std::to_string(a.loop) +
+                 " has sharp edges on both sides between two discs of the front";
+      e.filters = {"parallel_merging:1"};
+      e.decided_by = "parallel_merging";
+      e.shrink = shrink_index_ + 1;
+      record(std::move(e));
+    }
+    ++shrink_index_;
+    if (try_parallel_merging(strip, &why)) {
+      ++stats_.parallel_merges;
+      seam_fixpoint();
+      return true;
+    }
+    if (rules_applied_ != before)
+      throw InternalError("weave: parallel merging failed after changing the front: " + why);
+    if (tracing()) {
+      TraceEvent e;
+      e.kind = TraceEvent::Kind::ShrinkFailed;
+      e.step = rules_applied_;
+      e.reason = "parallel merging refused: " + why;
+      e.shrink = shrink_index_;
+      record(std::move(e));
+    }
+  }
+  return false;
+}
+
 // ---------------------------------------------------------------------------------------
 // loops
 
@@ -1216,8 +1428,8 @@ WeaveResult Weaver::run() {
         candidates.push_back(c);
       }
     }
-    // Ranking: loops that do not cross themselves first, then the smallest weight, then the
-    // lowest loop index (loops are enumerated from the lowest front face slot), side A first.
+    if (extended() && options_.extended.parallel_merging && merge_parallel(loops, candidates))
+      continue;
     std::vector<std::string> filters;
     std::string decided_by = "weight";
     std::string first_reason = "smallest weight (strictly on side + on strip)";

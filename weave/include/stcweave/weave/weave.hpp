@@ -76,6 +76,11 @@ struct ExtendedParameters {
   /// where more than one of the three edges is flatter than `little_sharp`. Lifted for a
   /// shrink in which every node would otherwise be blocked.
   bool flat_cross_precondition = true;
+  /// Parallel merging (sect. 5.1, as read in docs/extended-rules.md): a loop of sharp
+  /// convex side edges on both sides, between two discs of the front that its strip maps
+  /// onto each other, closes as one layer of hexes (one per disc face, no new node). It
+  /// runs before the selection and chooses the loop directly.
+  bool parallel_merging = true;
 };
 
 /// The class of an edge of dihedral angle `angle` (degrees).
@@ -152,7 +157,7 @@ struct TraceEvent {
   std::string decided_by;
   // Rule: which rule, at which node, on which front faces (their whiskers), which hex.
   /// "seam", "seam-coincident", "cross", "cross-relaxed" (geometric precondition lifted),
-  /// "blind-chord"
+  /// "blind-chord", "parallel-merge"
   std::string rule;
   NodeId node;
   std::vector<std::string> faces;
@@ -171,6 +176,8 @@ struct WeaveStats {
   std::size_t blocked_seams = 0;  ///< seam attempts refused by a precondition
   /// Shrink steps in which the geometric preconditions were lifted (extended only).
   std::size_t relaxed_preconditions = 0;
+  /// Layers closed by the parallel merging rule (extended only).
+  std::size_t parallel_merges = 0;
   /// Failed shrinks that were undone (`WeaveOptions::backtrack`).
   std::size_t rolled_back_shrinks = 0;
 };
