@@ -169,7 +169,8 @@ int run_mesh(const MeshArgs& a) {
                      {"blocked_seams", s.blocked_seams},
                      {"relaxed_preconditions", s.relaxed_preconditions},
                      {"rolled_back_shrinks", s.rolled_back_shrinks},
-                     {"parallel_merges", s.parallel_merges}};
+                     {"parallel_merges", s.parallel_merges},
+                     {"nonconvexity_seams", s.nonconvexity_seams}};
   report["seconds"] = {{"diagnose", r.seconds.diagnose},
                        {"orient", r.seconds.orient},
                        {"weave", r.seconds.weave},

@@ -37,6 +37,10 @@ void add_weave_options(CLI::App* sub, WeaveArgs& args) {
       "switch off the parallel crossing rule (sect. 4.5)");
   off("parallel-merging", p.parallel_merging,
       "switch off the parallel merging rule (sect. 5.1: closes a layer between two discs)");
+  sub->add_flag("--nonconvexity-seam", p.nonconvexity_seam,
+                "extended: switch on the non-convexity seam (sect. 5.2: folds a hex face onto an "
+                "input quad; off by default, see docs/extended-rules.md)")
+      ->group(group);
   off("nonconvex-filter", p.nonconvex_filter, "switch off the non-convex filter (sect. 4.4)");
   off("depth-filter", p.depth_filter, "switch off the depth filter (sect. 4.1)");
   off("first-convex-filter", p.first_convex_filter,
@@ -69,6 +73,7 @@ nlohmann::json weave_options_json(const weave::WeaveOptions& options) {
     j["little_sharp_nonconvex"] = p.little_sharp_nonconvex;
     j["parallel_crossing"] = p.parallel_crossing;
     j["parallel_merging"] = p.parallel_merging;
+    j["nonconvexity_seam"] = p.nonconvexity_seam;
     j["nonconvex_filter"] = p.nonconvex_filter;
     j["depth_filter"] = p.depth_filter;
     j["first_convex_filter"] = p.first_convex_filter;

@@ -208,6 +208,9 @@ class Weaver {
   bool try_cross(NodeId v, std::string* why);
   bool try_blind_chord(NodeId v, const std::vector<Passage>& strip, std::string* why);
   bool try_parallel_merging(const std::vector<Passage>& strip, std::string* why);
+  /// Non-convexity seams over the whole front (seed sect. 5.2); the number applied.
+  std::size_t nonconvexity_seams();
+  bool try_nonconvexity_seam(FaceIndex input_face, int side, std::string* why);
   /// Tries parallel merging on every loop that qualifies (sharp convex side edges on both
   /// sides, as many faces on either side); true when one was applied.
   bool merge_parallel(const std::vector<std::vector<Passage>>& loops,
@@ -953,6 +956,131 @@ bool Weaver::merge_parallel(const std::vector<std::vector<Passage>>& loops,
   return false;
 }
 
+/// Non-convexity seam, seed sect. 5.2 (Fig. 11), as we read it (docs/extended-rules.md):
+/// F2 is an input quad, F1 a hex face across its side E (they share only E). E is convex,
+/// a side of F2 next to E is non-convex, and F1's two nodes off E are interior nodes (the
+/// seed names F2's, which cannot be: input nodes never merge). F1 is folded onto F2 about
+/// E: its two far nodes merge with F2's and the two faces, now coincident, are glued. The
+/// faces this leaves sharing two edges are sewn by the basic seams that follow. The front is
+/// saved first and restored when the fold would break it.
+bool Weaver::try_nonconvexity_seam(FaceIndex f2, int side, std::string* why) {
+  const ExtendedParameters& par = options_.extended;
+  const FaceSide across = front_.across(f2, side);
+  if (across.face == kNoFace || !front_.face(across.face).owner.is_hex()) {
+    *why = "no hex face across";
+    return false;
+  }
+  if (edge_angle(f2, side) > par.little_sharp) {
+    *why = "the common edge is not convex";
+    return false;
+  }
+  if (edge_angle(f2, (side + 1) % 4) <= par.flat && edge_angle(f2, (side + 3) % 4) <= par.flat) {
+    *why = "no non-convex edge next to the common edge";
+    return false;
+  }
+  const FaceIndex f1 = across.face;
+  const stc::Quad F2 = front_.face(f2).nodes;
+  const stc::Quad F1 = front_.face(f1).nodes;
+  // F2 = [v, u, c, d] from its side `side`; F1 holds u -> v: F1 = [u, v, a, b].
+  const NodeId v = at(F2, side), u = at(F2, side + 1), c = at(F2, side + 2), d = at(F2, side + 3);
+  const NodeId a = at(F1, across.index + 2), b = at(F1, across.index + 3);
+  if (at(F1, across.index) != u || at(F1, across.index + 1) != v) {
+    *why = "the faces do not hold their common edge in opposite directions";
+    return false;
+  }
+  if (a.index() < front_.num_input_nodes() || b.index() < front_.num_input_nodes()) {
+    *why = "a node of the hex face off the common edge is an input node";
+    return false;
+  }
+  for (NodeId n : {a, b})
+    if (n == c || n == d) {
+      *why = "the faces share more than one edge";
+      return false;
+    }
+  // Folding about E takes a (next to v in F1) onto d (next to v in F2), b onto c.
+  if (share_hex(a, d) || share_hex(b, c)) {
+    *why = "a merge would join two nodes of one hex";
+    return false;
+  }
+  if (auto conflict = merge_conflict(a, d, d, a)) {
+    *why = *conflict;
+    return false;
+  }
+  Snapshot saved = save();
+  const auto merge = [this](NodeId keep, NodeId gone) {
+    front_.merge_nodes(keep, gone);
+    auto& hk = hexes_at_[keep.index()];
+    auto& hg = hexes_at_[gone.index()];
+    hk.insert(hk.end(), hg.begin(), hg.end());
+    hg.clear();
+  };
+  merge(d, a);
+  if (auto conflict = merge_conflict(b, c, c, b)) {
+    restore(std::move(saved));
+    --stats_.rolled_back_shrinks;
+    *why = *conflict;
+    return false;
+  }
+  merge(c, b);
+  // Glue every pair of faces that now coincide around the four nodes (F1 and F2 first).
+  std::vector<std::string> whiskers;
+  bool ok = true;
+  for (NodeId n : {c, d, u, v}) {
+    const auto& faces = front_.faces_at(n);
+    for (std::size_t i = 0; i < faces.size() && ok; ++i)
+      for (std::size_t j = i + 1; j < faces.size(); ++j) {
+        const FaceIndex p = faces[i], q = faces[j];
+        if (sorted_nodes(front_.face(p).nodes) != sorted_nodes(front_.face(q).nodes)) continue;
+        const FaceOwner op = front_.face(p).owner, oq = front_.face(q).owner;
+        if ((op.is_input() && oq.is_input()) || (op.is_hex() && oq.is_hex() && op.id == oq.id)) {
+          ok = false;
+          break;
+        }
+        whiskers.push_back(op.str());
+        whiskers.push_back(oq.str());
+        link(op, oq);
+        push_nodes_of(p);
+        push_nodes_of(q);
+        front_.remove_face(p < q ? q : p);
+        front_.remove_face(p < q ? p : q);
+        j = faces.size();  // the list changed: rescan this node
+        i = static_cast<std::size_t>(-1);
+        break;
+      }
+  }
+  std::optional<std::string> broken;
+  if (ok) broken = front_.check_invariants();
+  if (!ok || broken) {
+    restore(std::move(saved));
+    --stats_.rolled_back_shrinks;
+    *why = ok ? "the fold would break the front: " + *broken
+              : "the fold would glue two faces "
+                "that must not meet";
+    return false;
+  }
+  for (FaceIndex f : front_.faces_at(c)) push_nodes_of(f);
+  for (FaceIndex f : front_.faces_at(d)) push_nodes_of(f);
+  ++stats_.nonconvexity_seams;
+  after_rule("nonconvexity-seam", v, std::move(whiskers), HexId::invalid());
+  return true;
+}
+
+std::size_t Weaver::nonconvexity_seams() {
+  std::size_t applied = 0;
+  for (std::size_t fi = 0; fi < front_.face_capacity(); ++fi) {
+    const auto f = static_cast<FaceIndex>(fi);
+    for (int side = 0; side < 4; ++side) {
+      if (!front_.is_alive(f) || !front_.face(f).owner.is_input()) break;
+      std::string why;
+      if (try_nonconvexity_seam(f, side, &why)) {
+        ++applied;
+        seam_fixpoint();
+      }
+    }
+  }
+  return applied;
+}
+
 // ---------------------------------------------------------------------------------------
 // loops
 
@@ -1415,6 +1543,9 @@ WeaveResult Weaver::run() {
   std::reverse(seam_work_.begin(), seam_work_.end());
   seam_fixpoint();
   while (front_.num_faces() > 0) {
+    if (extended() && options_.extended.nonconvexity_seam && nonconvexity_seams() > 0 &&
+        front_.num_faces() == 0)
+      break;
     const auto loops = all_loops();
     std::vector<TraceCandidate> candidates;
     candidates.reserve(loops.size() * 2);

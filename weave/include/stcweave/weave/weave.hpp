@@ -81,6 +81,11 @@ struct ExtendedParameters {
   /// onto each other, closes as one layer of hexes (one per disc face, no new node). It
   /// runs before the selection and chooses the loop directly.
   bool parallel_merging = true;
+  /// Non-convexity seam (sect. 5.2, as read in docs/extended-rules.md): a hex face folded
+  /// onto the input quad it meets at a convex edge next to a non-convex one. Runs before
+  /// every selection. Off by default: measured, applying it wherever it is allowed blocks
+  /// later weaving (docs/extended-rules.md has the figures).
+  bool nonconvexity_seam = false;
 };
 
 /// The class of an edge of dihedral angle `angle` (degrees).
@@ -157,7 +162,7 @@ struct TraceEvent {
   std::string decided_by;
   // Rule: which rule, at which node, on which front faces (their whiskers), which hex.
   /// "seam", "seam-coincident", "cross", "cross-relaxed" (geometric precondition lifted),
-  /// "blind-chord", "parallel-merge"
+  /// "blind-chord", "parallel-merge", "nonconvexity-seam"
   std::string rule;
   NodeId node;
   std::vector<std::string> faces;
@@ -178,6 +183,8 @@ struct WeaveStats {
   std::size_t relaxed_preconditions = 0;
   /// Layers closed by the parallel merging rule (extended only).
   std::size_t parallel_merges = 0;
+  /// Non-convexity seams applied (extended only).
+  std::size_t nonconvexity_seams = 0;
   /// Failed shrinks that were undone (`WeaveOptions::backtrack`).
   std::size_t rolled_back_shrinks = 0;
 };
