@@ -30,8 +30,7 @@ int write_shape(const primal::HexMesh& mesh, const std::string& what, const Gene
     const primal::SurfaceMesh surface = primal::boundary_mesh(mesh);
     primal::write_surface(surface, g.output);
     if (!g.quiet)
-      std::cout << what << ": " << surface.surface.quads.size() << " quads -> " << g.output
-                << "\n";
+      std::cout << what << ": " << surface.surface.quads.size() << " quads -> " << g.output << "\n";
   }
   return kSuccess;
 }
