@@ -379,6 +379,9 @@ int run_bench(const BenchArgs& a) {
         int status = 0;
         while (waitpid(r.pid, &status, 0) < 0 && errno == EINTR) {
         }
+        if (jobs[r.job].kind == Job::Kind::Mesh)
+          results.rows[jobs[r.job].row].reason =
+              "not finished: killed when the bench was interrupted";
       }
       running.clear();
       break;
