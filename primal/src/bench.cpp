@@ -123,6 +123,14 @@ std::vector<std::string> stage_columns(const std::vector<BenchRow>& rows) {
   return stages;
 }
 
+/// The status of a run, with its reason (shortened) when it did not end Ok.
+std::string result_cell(const BenchRow& r) {
+  std::string result(to_string(r.status));
+  if (r.status != RunStatus::Ok && !r.reason.empty())
+    result += ": " + shorten(r.reason, kMarkdownReasonLength);
+  return result;
+}
+
 template <class T>
 nlohmann::json or_null(const std::optional<T>& v) {
   return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
@@ -146,50 +154,77 @@ Manifest parse_manifest(std::istream& in, const fs::path& manifest_path) {
         fields_of(hash == std::string::npos ? raw : raw.substr(0, hash));
     if (fields.empty()) continue;
     if (fields.size() > 2)
-      throw InvalidInput(where + ":" + std::to_string(line) + ": expected INPUT [REFERENCE], found " +
-                         std::to_string(fields.size()) +
+      throw InvalidInput(where + ":" + std::to_string(line) +
+                         ": expected INPUT [REFERENCE], found " + std::to_string(fields.size()) +
                          " fields; paths cannot contain spaces, and a comment starts with #");
-    const fs::path input = fs::path(fields[0]).lexically_normal();
-    const auto [it, fresh] = line_of.emplace(input.string(), line);
-    if (!fresh)
-      throw InvalidInput(where + ":" + std::to_string(line) + ": input " + fields[0] +
-                         " is already listed on line " + std::to_string(it->second) +
-                         "; list each input once (--rules runs it with several rule sets)");
+    const std::string at = where + ":" + std::to_string(line) + ": ";
     ManifestEntry e;
     e.line = line;
-    e.input = input.is_absolute() ? input : (folder / input).lexically_normal();
+    std::string key;  // what identifies the input, to find duplicates
+    if (fields[0].rfind(kGeneratePrefix, 0) == 0) {
+      try {
+        e.generated = parse_shape_spec(std::string_view(fields[0]).substr(kGeneratePrefix.size()));
+      } catch (const InvalidInput& ex) {
+        throw InvalidInput(at + ex.what());
+      }
+      key = std::string(kGeneratePrefix) + to_string(*e.generated);
+    } else {
+      const fs::path input = fs::path(fields[0]).lexically_normal();
+      e.input = input.is_absolute() ? input : (folder / input).lexically_normal();
+      key = input.generic_string();
+    }
+    const auto [it, fresh] = line_of.emplace(key, line);
+    if (!fresh)
+      throw InvalidInput(at + "input " + fields[0] + " is already listed on line " +
+                         std::to_string(it->second) +
+                         "; list each input once (--rules runs it with several rule sets)");
     if (fields.size() == 2) {
       const fs::path ref(fields[1]);
+      if (fields[1].rfind(kGeneratePrefix, 0) == 0)
+        throw InvalidInput(at + "a reference must be a hex mesh file, not " + fields[1]);
       e.reference = ref.is_absolute() ? ref : (folder / ref).lexically_normal();
     }
-    written.push_back(input.generic_string());
+    written.push_back(e.generated ? std::string() : key);
     m.entries.push_back(std::move(e));
   }
   if (in.bad()) throw IoError("cannot read the manifest " + where);
   if (m.entries.empty())
     throw InvalidInput(where + ": the manifest lists no input; write one input file per line");
 
-  // Display names: drop the leading folders every input shares (keep at least the file name).
+  // Display names: drop the leading folders every file input shares (keep at least the
+  // file name); a generated input is named by its spec.
   std::vector<std::vector<std::string>> parts;
+  std::optional<std::size_t> first;  // the first file input
   for (const std::string& w : written) {
     std::vector<std::string> p;
-    for (const auto& c : fs::path(w)) p.push_back(c.string());
+    if (!w.empty())
+      for (const auto& c : fs::path(w)) p.push_back(c.string());
+    if (!w.empty() && !first) first = parts.size();
     parts.push_back(std::move(p));
   }
-  std::size_t common = parts.front().size() - 1;
-  for (const auto& p : parts) {
-    std::size_t k = 0;
-    while (k < common && k + 1 < p.size() && p[k] == parts.front()[k]) ++k;
-    common = k;
+  std::size_t common = 0;
+  if (first) {
+    const std::vector<std::string> front = parts[*first];
+    common = front.size() - 1;
+    for (const auto& p : parts) {
+      if (p.empty()) continue;
+      std::size_t k = 0;
+      while (k < common && k + 1 < p.size() && p[k] == front[k]) ++k;
+      common = k;
+    }
   }
   std::set<std::string> stems;
   for (std::size_t i = 0; i < m.entries.size(); ++i) {
-    std::string name;
-    for (std::size_t k = common; k < parts[i].size(); ++k) {
-      if (!name.empty() && name.back() != '/') name += '/';
-      name += parts[i][k];
-    }
     ManifestEntry& e = m.entries[i];
+    std::string name;
+    if (e.generated) {
+      name = to_string(*e.generated);
+    } else {
+      for (std::size_t k = common; k < parts[i].size(); ++k) {
+        if (!name.empty() && name.back() != '/') name += '/';
+        name += parts[i][k];
+      }
+    }
     e.name = name;
     e.file_stem = safe_stem(name);
     if (!stems.insert(e.file_stem).second) {
@@ -213,9 +248,8 @@ std::vector<std::string> parse_rules_list(std::string_view list) {
   std::size_t start = 0;
   while (true) {
     const auto comma = list.find(',', start);
-    const std::string name =
-        trim(list.substr(start, comma == std::string_view::npos ? std::string_view::npos
-                                                                 : comma - start));
+    const std::string name = trim(list.substr(
+        start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
     if (name.empty())
       throw InvalidInput("--rules '" + std::string(list) +
                          "': empty rule-set name; give names separated by commas, e.g. "
@@ -253,6 +287,34 @@ std::optional<double> BenchRow::stage_seconds(std::string_view stage) const {
   return std::nullopt;
 }
 
+std::string tidy_reason(std::string message, const std::string& input_path,
+                        const std::string& name) {
+  for (const std::string_view prefix : {"invalid input: ", "failure: "})
+    if (message.rfind(prefix, 0) == 0) {
+      message.erase(0, prefix.size());
+      break;
+    }
+  // Only whole occurrences: bounded by the message's ends, spaces, quotes, brackets or
+  // punctuation, so that a short path is not replaced inside a word.
+  const auto is_boundary = [](char c) {
+    return std::string_view(" \t'\"()[],;:").find(c) != std::string_view::npos;
+  };
+  if (!input_path.empty() && input_path != name) {
+    std::size_t at = message.find(input_path);
+    while (at != std::string::npos) {
+      const std::size_t end = at + input_path.size();
+      if ((at == 0 || is_boundary(message[at - 1])) &&
+          (end == message.size() || is_boundary(message[end]))) {
+        message.replace(at, input_path.size(), name);
+        at = message.find(input_path, at + name.size());
+      } else {
+        at = message.find(input_path, at + 1);
+      }
+    }
+  }
+  return message;
+}
+
 void apply_report(const nlohmann::json& report, BenchRow& row) {
   if (!report.is_object()) return;
   if (report.contains("hexes") && report["hexes"].is_number_unsigned())
@@ -288,6 +350,41 @@ void apply_reference(const QualitySummary& quality, BenchRow& row) {
   row.reference_hexes = quality.hexes;
   row.reference_min_scaled_jacobian = quality.min_scaled_jacobian;
   row.reference_mean_scaled_jacobian = quality.mean_scaled_jacobian;
+}
+
+nlohmann::json probe_to_json(const BenchRow& row) {
+  nlohmann::json j;
+  j["quads"] = or_null(row.quads);
+  j["genus"] = or_null(row.genus);
+  j["loops"] = or_null(row.loops);
+  j["self_intersecting_loops"] = or_null(row.self_intersecting_loops);
+  j["reference_hexes"] = or_null(row.reference_hexes);
+  j["reference_min_scaled_jacobian"] = or_null(row.reference_min_scaled_jacobian);
+  j["reference_mean_scaled_jacobian"] = or_null(row.reference_mean_scaled_jacobian);
+  j["reference_error"] =
+      row.reference_error.empty() ? nlohmann::json(nullptr) : nlohmann::json(row.reference_error);
+  return j;
+}
+
+void apply_probe(const nlohmann::json& probe, BenchRow& row) {
+  if (!probe.is_object()) return;
+  const auto count = [&](const char* key, std::optional<std::size_t>& field) {
+    if (probe.contains(key) && probe[key].is_number_unsigned())
+      field = probe[key].get<std::size_t>();
+  };
+  const auto real = [&](const char* key, std::optional<double>& field) {
+    if (probe.contains(key) && probe[key].is_number()) field = probe[key].get<double>();
+  };
+  count("quads", row.quads);
+  if (probe.contains("genus") && probe["genus"].is_number_integer())
+    row.genus = probe["genus"].get<int>();
+  count("loops", row.loops);
+  count("self_intersecting_loops", row.self_intersecting_loops);
+  count("reference_hexes", row.reference_hexes);
+  real("reference_min_scaled_jacobian", row.reference_min_scaled_jacobian);
+  real("reference_mean_scaled_jacobian", row.reference_mean_scaled_jacobian);
+  if (probe.contains("reference_error") && probe["reference_error"].is_string())
+    row.reference_error = probe["reference_error"].get<std::string>();
 }
 
 PowerLawFit fit_power_law(const std::vector<double>& x, const std::vector<double>& y) {
@@ -331,15 +428,16 @@ PowerLawFit fit_power_law(const std::vector<double>& x, const std::vector<double
   return fit;
 }
 
-std::optional<PowerLawFit> fit_weave_scaling(const std::vector<BenchRow>& rows,
-                                             std::string_view rules) {
+std::optional<PowerLawFit> fit_stage_scaling(const std::vector<BenchRow>& rows,
+                                             std::string_view rules, std::string_view stage) {
   std::vector<double> x, y;
   for (const BenchRow& r : rows) {
-    if (r.rules != rules || r.status != RunStatus::Ok || !r.hexes || *r.hexes == 0) continue;
-    const auto weave = r.stage_seconds("weave");
-    if (!weave || !(*weave > 0.0)) continue;
+    if (r.rules != rules || r.status != RunStatus::Ok || !r.hexes || *r.hexes < kMinScalingHexes)
+      continue;
+    const auto seconds = r.stage_seconds(stage);
+    if (!seconds || !(*seconds > 0.0) || !std::isfinite(*seconds)) continue;
     x.push_back(static_cast<double>(*r.hexes));
-    y.push_back(*weave);
+    y.push_back(*seconds);
   }
   if (x.size() < kMinScalingRows) return std::nullopt;
   if (std::all_of(x.begin(), x.end(), [&](double v) { return v == x.front(); }))
@@ -350,8 +448,9 @@ std::optional<PowerLawFit> fit_weave_scaling(const std::vector<BenchRow>& rows,
 void fit_scaling(BenchResults& results) {
   results.scaling.clear();
   for (const std::string& rules : results.rules)
-    if (const auto fit = fit_weave_scaling(results.rows, rules))
-      results.scaling.emplace_back(rules, *fit);
+    for (const std::string_view stage : kScalingStages)
+      if (const auto fit = fit_stage_scaling(results.rows, rules, stage))
+        results.scaling.push_back({rules, std::string(stage), *fit});
 }
 
 std::string format_csv(const std::vector<BenchRow>& rows) {
@@ -382,15 +481,12 @@ std::string format_markdown_table(const std::vector<BenchRow>& rows) {
          "| weave s | total s | peak MB | ref hexes | ref min SJ | ref mean SJ |\n";
   out << "|---|---|--:|--:|--:|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
   for (const BenchRow& r : rows) {
-    std::string result(to_string(r.status));
-    if (r.status != RunStatus::Ok && !r.reason.empty())
-      result += ": " + shorten(r.reason, kMarkdownReasonLength);
     out << "| " << md_escape(r.input) << " | " << md_escape(r.rules) << " | " << md(r.quads)
-        << " | " << md(r.genus) << " | " << md(r.loops) << " | " << md_escape(result) << " | "
-        << md(r.hexes) << " | " << md(r.inverted) << " | " << md(r.min_scaled_jacobian) << " | "
-        << md(r.mean_scaled_jacobian) << " | " << md(r.stage_seconds("weave"), "%.3g") << " | "
-        << md(r.stage_seconds("total"), "%.3g") << " | " << md(r.peak_memory_mb, "%.0f") << " | "
-        << md(r.reference_hexes) << " | " << md(r.reference_min_scaled_jacobian) << " | "
+        << " | " << md(r.genus) << " | " << md(r.loops) << " | " << md_escape(result_cell(r))
+        << " | " << md(r.hexes) << " | " << md(r.inverted) << " | " << md(r.min_scaled_jacobian)
+        << " | " << md(r.mean_scaled_jacobian) << " | " << md(r.stage_seconds("weave"), "%.3g")
+        << " | " << md(r.stage_seconds("total"), "%.3g") << " | " << md(r.peak_memory_mb, "%.0f")
+        << " | " << md(r.reference_hexes) << " | " << md(r.reference_min_scaled_jacobian) << " | "
         << md(r.reference_mean_scaled_jacobian) << " |\n";
   }
   return out.str();
@@ -399,32 +495,129 @@ std::string format_markdown_table(const std::vector<BenchRow>& rows) {
 std::string format_markdown(const BenchResults& results) {
   std::ostringstream out;
   out << "# stcweave bench: " << md_escape(results.manifest) << "\n\n";
-  std::map<std::string, std::size_t> counts;
-  for (const BenchRow& r : results.rows) ++counts[std::string(to_string(r.status))];
-  out << results.rows.size() << " runs";
-  for (RunStatus s : {RunStatus::Ok, RunStatus::Rejected, RunStatus::Failed, RunStatus::Crashed,
-                      RunStatus::Timeout, RunStatus::OutOfMemory}) {
-    const auto it = counts.find(std::string(to_string(s)));
-    if (it != counts.end()) out << ", " << it->second << " " << it->first;
-  }
-  out << " (" << results.jobs << " jobs, " << number(results.wall_seconds, "%.1f")
-      << " s wall time).\n\n";
-  out << format_markdown_table(results.rows) << "\n";
-  out << "SJ: Verdict scaled Jacobian; seconds are the pipeline's own stage timings, peak MB the "
-         "child process's maximum resident set size; ref: the reference hex mesh.\n\n";
-  out << "## Scaling\n\n";
+  out << results.rows.size() << " runs (" << results.jobs << (results.jobs == 1 ? " job" : " jobs")
+      << " at a time, " << number(results.wall_seconds, "%.1f") << " s wall time).\n\n";
+
+  // Summary per rule set.
+  const std::array<RunStatus, 5> failures = {RunStatus::Rejected, RunStatus::Failed,
+                                             RunStatus::Crashed, RunStatus::Timeout,
+                                             RunStatus::OutOfMemory};
+  out << "| rules | runs | ok | valid | no inverted hex | with inverted hexes";
+  for (RunStatus s : failures) out << " | " << to_string(s);
+  out << " |\n|---|--:|--:|--:|--:|--:";
+  for (std::size_t i = 0; i < failures.size(); ++i) out << "|--:";
+  out << "|\n";
   for (const std::string& rules : results.rules) {
-    const auto it = std::find_if(results.scaling.begin(), results.scaling.end(),
-                                 [&](const auto& s) { return s.first == rules; });
-    if (it == results.scaling.end()) {
-      out << "- " << rules << ": no exponent (fewer than " << kMinScalingRows
-          << " successful rows with distinct hex counts)\n";
-    } else {
-      const PowerLawFit& f = it->second;
-      out << "- " << rules << ": weave seconds ~ " << number(f.coefficient, "%.3g") << " x hexes^"
-          << number(f.exponent, "%.2f") << " (least squares on log-log, " << f.points
-          << " successful rows, R^2 = " << number(f.r_squared, "%.3f") << ")\n";
+    std::size_t runs = 0, ok = 0, valid = 0, clean = 0, inverted = 0;
+    std::map<RunStatus, std::size_t> by_status;
+    for (const BenchRow& r : results.rows) {
+      if (r.rules != rules) continue;
+      ++runs;
+      ++by_status[r.status];
+      if (r.status != RunStatus::Ok) continue;
+      ++ok;
+      valid += r.valid.value_or(false) ? 1 : 0;
+      if (r.inverted) (*r.inverted == 0 ? clean : inverted) += 1;
     }
+    out << "| " << md_escape(rules) << " | " << runs << " | " << ok << " | " << valid << " | "
+        << clean << " | " << inverted;
+    for (RunStatus s : failures) out << " | " << by_status[s];
+    out << " |\n";
+  }
+  out << "\n";
+
+  if (results.rules.size() > 1) {
+    out << "## Side by side\n\n| input | quads | genus | loops";
+    for (const std::string& rules : results.rules) {
+      const std::string r = md_escape(rules);
+      out << " | " << r << " | " << r << " hexes | " << r << " inverted | " << r << " min SJ | "
+          << r << " mean SJ";
+    }
+    out << " | ref hexes | ref min SJ | ref mean SJ |\n|---|--:|--:|--:";
+    for (std::size_t i = 0; i < results.rules.size(); ++i) out << "|---|--:|--:|--:|--:";
+    out << "|--:|--:|--:|\n";
+    // Rows are grouped by input (manifest order), rule sets in `rules` order within a group.
+    std::vector<std::string> inputs;
+    for (const BenchRow& r : results.rows)
+      if (std::find(inputs.begin(), inputs.end(), r.input) == inputs.end())
+        inputs.push_back(r.input);
+    for (const std::string& input : inputs) {
+      const BenchRow* any = nullptr;
+      for (const BenchRow& r : results.rows)
+        if (r.input == input) any = any != nullptr ? any : &r;
+      out << "| " << md_escape(input) << " | " << md(any->quads) << " | " << md(any->genus) << " | "
+          << md(any->loops);
+      for (const std::string& rules : results.rules) {
+        const auto it = std::find_if(results.rows.begin(), results.rows.end(), [&](const auto& r) {
+          return r.input == input && r.rules == rules;
+        });
+        if (it == results.rows.end()) {
+          out << " | – | – | – | – | –";
+          continue;
+        }
+        out << " | " << md_escape(result_cell(*it)) << " | " << md(it->hexes) << " | "
+            << md(it->inverted) << " | " << md(it->min_scaled_jacobian) << " | "
+            << md(it->mean_scaled_jacobian);
+      }
+      out << " | " << md(any->reference_hexes) << " | " << md(any->reference_min_scaled_jacobian)
+          << " | " << md(any->reference_mean_scaled_jacobian) << " |\n";
+    }
+    out << "\n";
+  }
+
+  out << "## Every run\n\n" << format_markdown_table(results.rows) << "\n";
+  out << "SJ: Verdict scaled Jacobian (inverted: SJ <= 0); seconds are the pipeline's own stage "
+         "timings; peak MB is the child process's maximum resident set size; ref: the reference "
+         "hex mesh given in the manifest.\n\n";
+
+  const std::vector<std::string> stages = stage_columns(results.rows);
+  if (!stages.empty()) {
+    out << "## Seconds per stage\n\n| input | rules";
+    for (const std::string& s : stages) out << " | " << md_escape(s);
+    out << " | wall |\n|---|---";
+    for (std::size_t i = 0; i <= stages.size(); ++i) out << "|--:";
+    out << "|\n";
+    for (const BenchRow& r : results.rows) {
+      out << "| " << md_escape(r.input) << " | " << md_escape(r.rules);
+      for (const std::string& s : stages) out << " | " << md(r.stage_seconds(s), "%.3g");
+      out << " | " << number(r.wall_seconds, "%.3g") << " |\n";
+    }
+    out << "\n";
+  }
+
+  out << "## Scaling\n\n";
+  out << "Least-squares fit of log(seconds) = log(c) + e log(hexes) over the successful runs of "
+         "each rule set with at least "
+      << kMinScalingHexes << " hexes (smaller runs time fixed costs).\n\n";
+  for (const std::string& rules : results.rules) {
+    for (const std::string_view stage : kScalingStages) {
+      const auto it =
+          std::find_if(results.scaling.begin(), results.scaling.end(),
+                       [&](const auto& f) { return f.rules == rules && f.stage == stage; });
+      out << "- " << md_escape(rules) << ", " << stage << " seconds: ";
+      if (it == results.scaling.end()) {
+        out << "no exponent (fewer than " << kMinScalingRows
+            << " successful runs with distinct hex counts)\n";
+      } else {
+        const PowerLawFit& f = it->fit;
+        out << "~ " << number(f.coefficient, "%.3g") << " x hexes^" << number(f.exponent, "%.2f")
+            << " (" << f.points << " runs, R^2 = " << number(f.r_squared, "%.3f") << ")\n";
+      }
+    }
+    std::vector<const BenchRow*> points;
+    for (const BenchRow& r : results.rows)
+      if (r.rules == rules && r.status == RunStatus::Ok && r.hexes && *r.hexes >= kMinScalingHexes)
+        points.push_back(&r);
+    if (points.size() < kMinScalingRows) continue;
+    std::stable_sort(points.begin(), points.end(),
+                     [](const BenchRow* a, const BenchRow* b) { return *a->hexes < *b->hexes; });
+    out << "\n| " << md_escape(rules)
+        << ": input | hexes | weave s | total s |\n|---|--:|--:|--:|\n";
+    for (const BenchRow* r : points)
+      out << "| " << md_escape(r->input) << " | " << *r->hexes << " | "
+          << md(r->stage_seconds("weave"), "%.3g") << " | " << md(r->stage_seconds("total"), "%.3g")
+          << " |\n";
+    out << "\n";
   }
   return out.str();
 }
@@ -465,14 +658,16 @@ nlohmann::json to_json(const BenchResults& results) {
   }
   j["rows"] = rows;
   nlohmann::json scaling = nlohmann::json::object();
-  for (const std::string& rules : results.rules) scaling[rules] = nullptr;
-  for (const auto& [rules, f] : results.scaling)
-    scaling[rules] = {{"x", "hexes"},
-                      {"y", "weave seconds"},
-                      {"exponent", f.exponent},
-                      {"coefficient", f.coefficient},
-                      {"r_squared", f.r_squared},
-                      {"points", f.points}};
+  for (const std::string& rules : results.rules)
+    for (const std::string_view stage : kScalingStages)
+      scaling[rules][std::string(stage)] = nullptr;
+  for (const ScalingFit& s : results.scaling)
+    scaling[s.rules][s.stage] = {{"x", "hexes"},
+                                 {"y", s.stage + " seconds"},
+                                 {"exponent", s.fit.exponent},
+                                 {"coefficient", s.fit.coefficient},
+                                 {"r_squared", s.fit.r_squared},
+                                 {"points", s.fit.points}};
   j["scaling"] = scaling;
   return j;
 }

@@ -92,8 +92,8 @@ HexMesh bar_hexes(BarShape shape) {
   }
   const auto n = [](std::size_t i, std::size_t j) { return NodeId(4 * i + j); };
   for (std::size_t i = 0; i < 3; ++i) {
-    stc::Hex h = {n(i, 0), n(i, 1), n(i, 2), n(i, 3), n(i + 1, 0), n(i + 1, 1), n(i + 1, 2),
-                  n(i + 1, 3)};
+    stc::Hex h = {n(i, 0),     n(i, 1),     n(i, 2),     n(i, 3),
+                  n(i + 1, 0), n(i + 1, 1), n(i + 1, 2), n(i + 1, 3)};
     if (hex_scaled_jacobian(mesh.points, h) < 0.0)
       h = {n(i, 0), n(i, 3), n(i, 2), n(i, 1), n(i + 1, 0), n(i + 1, 3), n(i + 1, 2), n(i + 1, 1)};
     if (!(hex_scaled_jacobian(mesh.points, h) > 0.0))
@@ -105,6 +105,54 @@ HexMesh bar_hexes(BarShape shape) {
 
 SurfaceMesh bar_surface(BarShape shape) {
   return boundary_mesh(bar_hexes(shape));
+}
+
+ShapeSpec parse_shape_spec(std::string_view spec) {
+  const auto bad = [&](const std::string& why) {
+    return InvalidInput("shape '" + std::string(spec) + "': " + why +
+                        "; write box:AxBxC (e.g. box:8x8x8) or bar:SHAPE (e.g. bar:l)");
+  };
+  ShapeSpec out;
+  if (spec.rfind("bar:", 0) == 0) {
+    out.kind = ShapeSpec::Kind::Bar;
+    try {
+      out.bar = bar_shape_from_name(spec.substr(4));
+    } catch (const InvalidInput& e) {
+      throw bad(e.what());
+    }
+    return out;
+  }
+  if (spec.rfind("box:", 0) != 0) throw bad("unknown kind of shape");
+  std::array<int, 3> sides{};
+  std::string_view rest = spec.substr(4);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const std::size_t end = i < 2 ? rest.find('x') : rest.size();
+    if (end == std::string_view::npos) throw bad("three sides separated by 'x' are needed");
+    const std::string_view digits = rest.substr(0, end);
+    if (digits.empty() || digits.size() > 4 ||
+        digits.find_first_not_of("0123456789") != std::string_view::npos)
+      throw bad("side '" + std::string(digits) + "' is not a whole number");
+    sides[i] = std::stoi(std::string(digits));
+    if (sides[i] < 1 || sides[i] > kMaxBoxSide)
+      throw bad("every side must be between 1 and " + std::to_string(kMaxBoxSide));
+    rest = i < 2 ? rest.substr(end + 1) : std::string_view{};
+  }
+  out.a = sides[0];
+  out.b = sides[1];
+  out.c = sides[2];
+  return out;
+}
+
+std::string to_string(const ShapeSpec& spec) {
+  if (spec.kind == ShapeSpec::Kind::Bar)
+    return "bar:" + bar_shape_names().at(static_cast<std::size_t>(spec.bar));
+  return "box:" + std::to_string(spec.a) + "x" + std::to_string(spec.b) + "x" +
+         std::to_string(spec.c);
+}
+
+HexMesh shape_hexes(const ShapeSpec& spec) {
+  return spec.kind == ShapeSpec::Kind::Bar ? bar_hexes(spec.bar)
+                                           : box_hexes(spec.a, spec.b, spec.c);
 }
 
 SurfaceMesh boundary_mesh(const HexMesh& mesh) {

@@ -48,6 +48,26 @@ enum class BarShape {
 /// The boundary of `bar_hexes(shape)`: 14 quads oriented outward, 16 nodes.
 [[nodiscard]] SurfaceMesh bar_surface(BarShape shape);
 
+/// A generated shape named in a benchmark manifest: `box:AxBxC` (the A x B x C box) or
+/// `bar:SHAPE` (a Fig. 5 bar, SHAPE one of `bar_shape_names()`).
+struct ShapeSpec {
+  enum class Kind { Box, Bar };
+  Kind kind = Kind::Box;
+  int a = 1, b = 1, c = 1;            ///< box sides (Box only)
+  BarShape bar = BarShape::Straight;  ///< (Bar only)
+};
+
+/// Parses `box:AxBxC` or `bar:SHAPE` (`box:8x8x8`, `bar:l`).
+/// \throw InvalidInput for anything else, or box sides outside 1..kMaxBoxSide; the message
+///        shows the accepted forms.
+[[nodiscard]] ShapeSpec parse_shape_spec(std::string_view spec);
+
+/// The canonical text of a spec, as `parse_shape_spec` accepts it (`box:8x8x8`, `bar:l`).
+[[nodiscard]] std::string to_string(const ShapeSpec& spec);
+
+/// The natural hex mesh of a spec: `box_hexes` or `bar_hexes`.
+[[nodiscard]] HexMesh shape_hexes(const ShapeSpec& spec);
+
 /// The boundary of a hex mesh (faces used by one hex, oriented outward for positively
 /// oriented hexes), nodes compacted in increasing order of their hex-mesh ids.
 [[nodiscard]] SurfaceMesh boundary_mesh(const HexMesh& mesh);
