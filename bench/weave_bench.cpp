@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "stcweave/primal/diagnose.hpp"
+#include "stcweave/primal/edge_angles.hpp"
 #include "stcweave/primal/io.hpp"
 #include "stcweave/weave/weave.hpp"
 #include "support/shapes.hpp"
@@ -13,12 +14,22 @@ namespace {
 
 using namespace stcweave;
 
+// Second argument: 0 = reliable, 1 = extended (with the surface's dihedral angles).
+weave::WeaveOptions options_for(std::int64_t rules) {
+  weave::WeaveOptions o;
+  o.rules = rules == 0 ? weave::RuleSet::Reliable : weave::RuleSet::Extended;
+  return o;
+}
+
 void weave_box(benchmark::State& state) {
   const int k = static_cast<int>(state.range(0));
   const auto box = test::box_surface(k, k, k);
+  const weave::WeaveOptions options = options_for(state.range(1));
+  const auto angles =
+      state.range(1) == 0 ? std::vector<std::array<double, 4>>{} : primal::dihedral_angles(box);
   std::size_t hexes = 0;
   for (auto _ : state) {
-    const auto r = weave::weave(box.surface);
+    const auto r = weave::weave(box.surface, options, angles);
     hexes = r.complex.hexes.size();
     benchmark::DoNotOptimize(hexes);
   }
@@ -27,7 +38,10 @@ void weave_box(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(hexes) * static_cast<double>(state.iterations()),
                          benchmark::Counter::kIsRate);
 }
-BENCHMARK(weave_box)->Arg(4)->Arg(8)->Arg(16)->Arg(24)->Arg(32)->Unit(benchmark::kMillisecond);
+BENCHMARK(weave_box)
+    ->ArgNames({"k", "extended"})
+    ->ArgsProduct({{4, 8, 16, 24, 32}, {0, 1}})
+    ->Unit(benchmark::kMillisecond);
 
 void weave_shared(benchmark::State& state, const std::string& name) {
   const std::filesystem::path path = std::filesystem::path(STCWEAVE_SHARED_DATA) / name;
@@ -37,9 +51,12 @@ void weave_shared(benchmark::State& state, const std::string& name) {
   }
   primal::SurfaceMesh s = primal::surface_of(primal::read_mesh(path));
   (void)primal::orient_outward(s);
+  const weave::WeaveOptions options = options_for(state.range(0));
+  const auto angles =
+      state.range(0) == 0 ? std::vector<std::array<double, 4>>{} : primal::dihedral_angles(s);
   std::size_t hexes = 0;
   for (auto _ : state) {
-    const auto r = weave::weave(s.surface);
+    const auto r = weave::weave(s.surface, options, angles);
     hexes = r.complex.hexes.size();
     benchmark::DoNotOptimize(hexes);
   }
@@ -50,12 +67,20 @@ void weave_shared(benchmark::State& state, const std::string& name) {
                          benchmark::Counter::kIsRate);
 }
 BENCHMARK_CAPTURE(weave_shared, lblock_tf_medium, std::string("gmsh/lblock_tf_medium.obj"))
+    ->ArgName("extended")
+    ->DenseRange(0, 1)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(weave_shared, cube_tf_medium, std::string("gmsh/cube_tf_medium.obj"))
+    ->ArgName("extended")
+    ->DenseRange(0, 1)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(weave_shared, Chamfer_L0, std::string("real/hexalab/selpad2019_Chamfer_L0.mesh"))
+    ->ArgName("extended")
+    ->DenseRange(0, 1)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(weave_shared, pave2, std::string("real/mesquite/pave2.e.vtk"))
+    ->ArgName("extended")
+    ->DenseRange(0, 1)
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace
