@@ -100,6 +100,18 @@ std::vector<std::array<int, 3>> ring_cells() {
   return cells;
 }
 
+primal::SurfaceMesh bar_surface(const std::vector<std::array<Eigen::RowVector3d, 4>>& sections) {
+  const int n = static_cast<int>(sections.size()) - 1;
+  primal::HexMesh column = box_hexes(1, 1, n);
+  // box node (i, j, k) has id i + 2 (j + 2 k); corner c of a section is (i, j) below
+  constexpr std::array<std::array<int, 2>, 4> kCorner = {{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
+  for (int k = 0; k <= n; ++k)
+    for (std::size_t c = 0; c < 4; ++c)
+      column.points.row(kCorner[c][0] + 2 * (kCorner[c][1] + 2 * k)) =
+          sections[static_cast<std::size_t>(k)][c];
+  return boundary_of(column);
+}
+
 primal::SurfaceMesh rhombic_dodecahedron() {
   primal::SurfaceMesh s;
   // nodes 0..7: cube corners (+-1,+-1,+-1); 8..13: (+-2,0,0), (0,+-2,0), (0,0,+-2)

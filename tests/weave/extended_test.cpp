@@ -1,5 +1,6 @@
 // The rule set `extended` (seed sect. 4-7) on shapes whose answer is known: structured boxes
-// with graded spacing and the L-block give their structured meshes.
+// with graded spacing and the L-block give their structured meshes, and the seed's Fig. 5 bars
+// give valid complexes.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -120,6 +121,86 @@ TEST(Extended, LBlockGivesTheStructuredMesh) {
   expect_valid(surface, r);
   std::string why;
   EXPECT_TRUE(test::same_connectivity(hex_mesh_of(surface, r), reference, &why)) << why;
+}
+
+// ---------------------------------------------------------------------------------------
+// the seed's Fig. 5: one 14-quad surface (the 1 x 1 x 3 bar), five solids
+
+using Section = std::array<Eigen::RowVector3d, 4>;
+
+/// A cross-section of unit depth (y from 0 to 1) spanning p = (x, z) to q = (x, z): its first
+/// corner is p at y = 0, its second q at y = 0.
+Section section(double px, double pz, double qx, double qz) {
+  return {Eigen::RowVector3d(px, 0, pz), Eigen::RowVector3d(qx, 0, qz),
+          Eigen::RowVector3d(qx, 1, qz), Eigen::RowVector3d(px, 1, pz)};
+}
+
+/// The five embeddings. Each bend is mitred: the section between two arms joins the outer
+/// corner to the inner one, so every hex of the column is convex and the arms are unit wide.
+std::vector<std::pair<std::string, primal::SurfaceMesh>> figure5_bars() {
+  std::vector<std::pair<std::string, primal::SurfaceMesh>> bars;
+  bars.emplace_back("straight", test::bar_surface({section(0, 0, 1, 0), section(0, 1, 1, 1),
+                                                   section(0, 2, 1, 2), section(0, 3, 1, 3)}));
+  // up x in [0,1] to z = 3, then right along z in [2,3] to x = 3
+  bars.emplace_back("L", test::bar_surface({section(0, 0, 1, 0), section(0, 3, 1, 2),
+                                            section(2, 3, 2, 2), section(3, 3, 3, 2)}));
+  // up, right, down: arms x in [0,1] and [2,3], bridge z in [2,3]
+  bars.emplace_back("U", test::bar_surface({section(0, 0, 1, 0), section(0, 3, 1, 2),
+                                            section(3, 3, 2, 2), section(3, 0, 2, 0)}));
+  // up, right, up again: x in [0,1] to z = 3, z in [2,3] to x = 3, x in [2,3] to z = 5
+  bars.emplace_back("Z", test::bar_surface({section(0, 0, 1, 0), section(0, 3, 1, 2),
+                                            section(2, 3, 3, 2), section(2, 5, 3, 5)}));
+  // straight, but the last cell folded in along its length: its two sections are darts (the
+  // fourth corner pushed inside the square), so the end face is a non-convex quad and the
+  // edge joining the two reflex corners is a non-convex edge of the solid
+  Section dart2 = section(0, 2, 1, 2), dart3 = section(0, 3, 1, 3);
+  dart2[3] << 0.75, 0.25, 2;
+  dart3[3] << 0.75, 0.25, 3;
+  bars.emplace_back("folded",
+                    test::bar_surface({section(0, 0, 1, 0), section(0, 1, 1, 1), dart2, dart3}));
+  return bars;
+}
+
+primal::MeshFile file_of(const primal::SurfaceMesh& s, const std::string& name) {
+  primal::MeshFile f;
+  f.path = name;
+  f.format = "memory";
+  f.points = s.points;
+  f.quads = s.surface.quads;
+  return f;
+}
+
+TEST(Extended, SeedFigure5BarsGiveValidComplexes) {
+  const stc::QuadSurface topology = test::box_surface(1, 1, 3).surface;
+  for (const auto& [name, bar] : figure5_bars()) {
+    SCOPED_TRACE(name);
+    ASSERT_EQ(bar.surface.quads, topology.quads) << "one topology, five embeddings";
+    primal::MeshOptions options;
+    options.untangle = false;
+    options.weave.check = true;
+    const primal::MeshResult r = primal::mesh_file(file_of(bar, name), options);
+    EXPECT_EQ(r.orientation.flipped_quads, 0u) << "the embedding must be outward";
+    EXPECT_TRUE(r.validation.valid) << r.validation.summary();
+    RecordProperty("hexes_" + name, static_cast<int>(r.mesh.complex.hexes.size()));
+    if (name == "straight") EXPECT_EQ(r.mesh.complex.hexes.size(), 3u);
+  }
+}
+
+TEST(Extended, SeedFigure5EmbeddingsDifferInGeometry) {
+  // The five solids must really differ where the rules look: the L, U and Z have non-convex
+  // edges (their inner corners), the folded bar one (along its folded cell), the straight
+  // bar none.
+  for (const auto& [name, bar] : figure5_bars()) {
+    SCOPED_TRACE(name);
+    const auto angles = primal::dihedral_angles(bar);
+    double widest = 0.0;
+    for (const auto& quad : angles)
+      for (double a : quad) widest = std::max(widest, a);
+    if (name == "straight")
+      EXPECT_LT(widest, 181.0);
+    else
+      EXPECT_GT(widest, 190.0);
+  }
 }
 
 }  // namespace
