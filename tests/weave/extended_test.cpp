@@ -1,6 +1,7 @@
 // The rule set `extended` (seed sect. 4-7) on shapes whose answer is known: structured boxes
-// with graded spacing and the L-block give their structured meshes, and the seed's Fig. 5 bars
-// give valid complexes.
+// with graded spacing and the L-block give their structured meshes, the seed's Fig. 5 bars give
+// valid complexes, and each filter or precondition, switched off alone, changes the weave of a
+// small surface designed for it (the trace says where and why).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -41,6 +42,54 @@ primal::HexMesh hex_mesh_of(const primal::SurfaceMesh& s, const WeaveResult& r) 
   m.points = primal::Points::Zero(static_cast<Eigen::Index>(r.complex.num_nodes), 3);
   m.points.topRows(s.points.rows()) = s.points;
   return m;
+}
+
+/// The selections of a weave as first decided (fallbacks after a failed shrink left out).
+std::vector<const TraceEvent*> selections(const WeaveResult& r) {
+  std::vector<const TraceEvent*> out;
+  for (const TraceEvent& e : r.trace)
+    if (e.kind == TraceEvent::Kind::Selection && e.decided_by != "fallback") out.push_back(&e);
+  return out;
+}
+
+const TraceCandidate& chosen(const TraceEvent& e) {
+  return e.candidates.at(static_cast<std::size_t>(e.chosen));
+}
+
+/// The first selection at which the two weaves shrink a different (loop, side); -1 if none.
+int first_divergence(const WeaveResult& a, const WeaveResult& b) {
+  const auto sa = selections(a), sb = selections(b);
+  for (std::size_t i = 0; i < std::min(sa.size(), sb.size()); ++i) {
+    const TraceCandidate &p = chosen(*sa[i]), &q = chosen(*sb[i]);
+    if (p.loop != q.loop || p.side != q.side) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+/// The entry of `filter` in a selection's filter list ("name:before->after"), or "".
+std::string filter_entry(const TraceEvent& e, const std::string& filter) {
+  for (const auto& f : e.filters)
+    if (f.rfind(filter + ":", 0) == 0) return f;
+  return {};
+}
+
+/// True when the selection's entry for `filter` reads "name:N->M" with M < N.
+bool narrowed(const TraceEvent& e, const std::string& filter) {
+  const std::string f = filter_entry(e, filter);
+  const auto arrow = f.find("->");
+  if (arrow == std::string::npos) return false;
+  const std::string before = f.substr(filter.size() + 1, arrow - filter.size() - 1);
+  const std::string after = f.substr(arrow + 2);
+  if (after == "relaxed") return false;
+  return std::stoul(after) < std::stoul(before);
+}
+
+std::string describe(const TraceEvent& e) {
+  std::string s = "decided_by=" + e.decided_by + " filters:";
+  for (const auto& f : e.filters) s += " " + f;
+  const TraceCandidate& c = chosen(e);
+  s += " chosen loop " + std::to_string(c.loop) + " side " + "AB"[c.side];
+  return s;
 }
 
 void expect_valid(const primal::SurfaceMesh& s, const WeaveResult& r) {
@@ -200,6 +249,227 @@ TEST(Extended, SeedFigure5EmbeddingsDifferInGeometry) {
       EXPECT_LT(widest, 181.0);
     else
       EXPECT_GT(widest, 190.0);
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// each filter, switched off alone, changes the weave
+
+/// The 2 x 1 x 3 box (long along z) whose two end faces are each folded into a valley: the
+/// middle nodes of each end face are pushed 0.4 into the solid.
+primal::SurfaceMesh valley_ended_bar() {
+  primal::SurfaceMesh s = test::box_surface(2, 1, 3);
+  for (Eigen::Index n = 0; n < s.points.rows(); ++n) {
+    if (std::abs(s.points(n, 0) - 1.0) > 1e-9) continue;
+    if (s.points(n, 2) < 1e-9) s.points(n, 2) = 0.4;
+    if (s.points(n, 2) > 3.0 - 1e-9) s.points(n, 2) = 2.6;
+  }
+  return s;
+}
+
+/// The 1 x 1 x 3 bar whose bottom end is tapered: the bottom face shrunk to half its width
+/// and raised to z = 0.75, so that its four edges are little sharp (about 117 and 153
+/// degrees) instead of sharp.
+primal::SurfaceMesh tapered_bar() {
+  primal::SurfaceMesh s = test::box_surface(1, 1, 3);
+  for (Eigen::Index n = 0; n < s.points.rows(); ++n)
+    if (s.points(n, 2) < 1e-9)
+      s.points.row(n) << 0.25 + 0.5 * s.points(n, 0), 0.25 + 0.5 * s.points(n, 1), 0.75;
+  return s;
+}
+
+/// A cylinder: the O-grid disk (12 quads, 8 sides) extruded over `layers` unit layers.
+primal::SurfaceMesh ogrid_cylinder(int layers) {
+  std::vector<double> heights;
+  for (int k = 0; k <= layers; ++k) heights.push_back(k);
+  return test::boundary_of(test::extruded_hexes(test::ogrid_disk(), heights));
+}
+
+struct Pair {
+  WeaveResult on, off;
+};
+
+/// The weave with every rule on, and with the one switch `off` cleared.
+Pair weave_with_and_without(const primal::SurfaceMesh& s, bool ExtendedParameters::*off) {
+  WeaveOptions with = extended_options();
+  WeaveOptions without = with;
+  without.extended.*off = false;
+  Pair p{weave_extended(s, with), weave_extended(s, without)};
+  expect_valid(s, p.on);
+  expect_valid(s, p.off);
+  return p;
+}
+
+TEST(ExtendedFilters, NonConvexKeepsTheShrinkAwayFromAValley) {
+  // The cheapest shrinks (an end cell, 8 faces) would cross a folded end face; the filter
+  // sends the first shrink elsewhere.
+  const auto s = valley_ended_bar();
+  const Pair p = weave_with_and_without(s, &ExtendedParameters::nonconvex_filter);
+  ASSERT_EQ(first_divergence(p.on, p.off), 0);
+  const TraceEvent& on = *selections(p.on)[0];
+  const TraceEvent& off = *selections(p.off)[0];
+  EXPECT_TRUE(narrowed(on, "nonconvex")) << describe(on);
+  EXPECT_EQ(chosen(on).nonconvex_on_side, 0u) << describe(on);
+  EXPECT_GT(chosen(off).nonconvex_on_side, 0u) << describe(off);
+  EXPECT_LT(chosen(off).faces_collapsed, chosen(on).faces_collapsed);
+  EXPECT_TRUE(filter_entry(off, "nonconvex").empty());
+}
+
+TEST(ExtendedFilters, DepthActsAfterTheFirstShrink) {
+  // On the L-block the first shrink creates faces of depth 1; at the next selection the depth
+  // filter keeps the sides without them.
+  const auto s = test::voxel_surface(test::lblock_cells());
+  const Pair p = weave_with_and_without(s, &ExtendedParameters::depth_filter);
+  const int at = first_divergence(p.on, p.off);
+  ASSERT_GE(at, 1) << "the depth rule cannot bite before a shrink has made interior faces";
+  const TraceEvent& on = *selections(p.on)[static_cast<std::size_t>(at)];
+  const TraceEvent& off = *selections(p.off)[static_cast<std::size_t>(at)];
+  EXPECT_TRUE(narrowed(on, "depth")) << describe(on);
+  EXPECT_LT(chosen(on).depth, chosen(off).depth) << describe(on) << " / " << describe(off);
+  EXPECT_EQ(p.on.complex.hexes.size(), 10u);
+}
+
+TEST(ExtendedFilters, FirstConvexRefusesALoopOnAFlatPatch) {
+  // The O-grid cylinder one layer high: after two shrinks the cheapest remaining loop lies
+  // on a flat patch (crosses no sharp edge); the first convex rule removes it.
+  const auto s = ogrid_cylinder(1);
+  const Pair p = weave_with_and_without(s, &ExtendedParameters::first_convex_filter);
+  const int at = first_divergence(p.on, p.off);
+  ASSERT_GE(at, 0);
+  const TraceEvent& on = *selections(p.on)[static_cast<std::size_t>(at)];
+  const TraceEvent& off = *selections(p.off)[static_cast<std::size_t>(at)];
+  EXPECT_TRUE(narrowed(on, "first_convex")) << describe(on);
+  EXPECT_GT(chosen(on).crossed_sharp, 0u) << describe(on);
+  EXPECT_EQ(chosen(off).crossed_sharp, 0u) << describe(off);
+}
+
+TEST(ExtendedFilters, SecondConvexPrefersTheSharpEnd) {
+  // Both end cells of the bar cost the same (5 faces); the tapered end has no sharp edge
+  // along the strip, the square end four: the second convex rule alone picks the square end.
+  const auto s = tapered_bar();
+  const Pair p = weave_with_and_without(s, &ExtendedParameters::second_convex_filter);
+  ASSERT_EQ(first_divergence(p.on, p.off), 0);
+  const TraceEvent& on = *selections(p.on)[0];
+  const TraceEvent& off = *selections(p.off)[0];
+  EXPECT_EQ(on.decided_by, "second_convex") << describe(on);
+  EXPECT_GT(chosen(on).side_sharp, chosen(off).side_sharp);
+  EXPECT_EQ(chosen(on).faces_collapsed, chosen(off).faces_collapsed);
+  EXPECT_EQ(p.on.complex.hexes.size(), 3u);
+  EXPECT_EQ(p.off.complex.hexes.size(), 3u);
+}
+
+TEST(ExtendedFilters, ParallelCrossingShrinksAlongTheCylinderRim) {
+  // The O-grid cylinder two layers high: once a cap layer is gone, the ring loop along the
+  // rim runs beside the cap's ring loop across sharp edges, and parallel crossing takes it.
+  const auto s = ogrid_cylinder(2);
+  const Pair p = weave_with_and_without(s, &ExtendedParameters::parallel_crossing);
+  const int at = first_divergence(p.on, p.off);
+  ASSERT_GE(at, 0);
+  const TraceEvent& on = *selections(p.on)[static_cast<std::size_t>(at)];
+  EXPECT_EQ(on.decided_by, "parallel_crossing") << describe(on);
+  EXPECT_GE(chosen(on).parallel_to, 0);
+  for (const TraceEvent* e : selections(p.off)) EXPECT_NE(e->decided_by, "parallel_crossing");
+  RecordProperty("hexes_on", static_cast<int>(p.on.complex.hexes.size()));
+  RecordProperty("hexes_off", static_cast<int>(p.off.complex.hexes.size()));
+}
+
+std::vector<std::string> rules_applied(const WeaveResult& r) {
+  std::vector<std::string> out;
+  for (const TraceEvent& e : r.trace)
+    if (e.kind == TraceEvent::Kind::Rule) out.push_back(e.rule + "@" + e.node.str());
+  return out;
+}
+
+TEST(ExtendedFilters, FlatCrossPreconditionChangesTheRules) {
+  // In the O-grid cylinder some corners met while shrinking have two edges flatter than
+  // little_sharp: the precondition refuses the cross there (another rule runs first), and
+  // lifts itself when every node is blocked ("cross-relaxed").
+  const auto s = ogrid_cylinder(1);
+  const Pair p = weave_with_and_without(s, &ExtendedParameters::flat_cross_precondition);
+  EXPECT_NE(rules_applied(p.on), rules_applied(p.off));
+  const auto relaxed = [](const WeaveResult& r) {
+    return std::count_if(r.trace.begin(), r.trace.end(),
+                         [](const TraceEvent& e) { return e.rule == "cross-relaxed"; });
+  };
+  EXPECT_GT(relaxed(p.on), 0);
+  EXPECT_GT(p.on.stats.relaxed_preconditions, 0u);
+  EXPECT_EQ(relaxed(p.off), 0);
+  EXPECT_EQ(p.off.stats.relaxed_preconditions, 0u);
+}
+
+TEST(ExtendedFilters, FirstConvexIsRelaxedWhenNoLoopCrossesASharpEdge) {
+  // With sharp and little_sharp below 90 degrees a box has no convex edge for the rule: it
+  // would leave nothing, so it is relaxed and the next filter sees the same set.
+  WeaveOptions o = extended_options();
+  o.extended.sharp = 30;
+  o.extended.little_sharp = 60;
+  o.extended.flat_cross_precondition = false;  // every corner would be "too flat"
+  const auto s = test::box_surface(2, 2, 2);
+  const WeaveResult r = weave_extended(s, o);
+  EXPECT_EQ(r.complex.hexes.size(), 8u);
+  expect_valid(s, r);
+  const TraceEvent& first = *selections(r).at(0);
+  const std::string entry = filter_entry(first, "first_convex");
+  ASSERT_NE(entry.find("->relaxed"), std::string::npos) << describe(first);
+  const std::string before =
+      entry.substr(entry.find(':') + 1, entry.find("->") - entry.find(':') - 1);
+  EXPECT_EQ(filter_entry(first, "second_convex").rfind("second_convex:" + before + "->", 0), 0u)
+      << describe(first);
+}
+
+TEST(ExtendedFilters, NonConvexIsRelaxedWhenEverySideHasANonConvexEdge) {
+  // With flat below 90 degrees every box edge counts as non-convex: the rule would leave no
+  // candidate, so it is relaxed (the seed stops there) and the weave completes.
+  WeaveOptions o = extended_options();
+  o.extended.sharp = 20;
+  o.extended.little_sharp = 40;
+  o.extended.flat = 60;
+  o.extended.little_sharp_nonconvex = 80;
+  const auto s = test::box_surface(2, 2, 2);
+  const WeaveResult r = weave_extended(s, o);
+  EXPECT_EQ(r.complex.hexes.size(), 8u);
+  expect_valid(s, r);
+  const TraceEvent& first = *selections(r).at(0);
+  EXPECT_NE(filter_entry(first, "nonconvex").find("->relaxed"), std::string::npos)
+      << describe(first);
+}
+
+// ---------------------------------------------------------------------------------------
+// options and determinism
+
+TEST(Extended, ThresholdsOutOfOrderAreInvalidInput) {
+  const auto s = test::box_surface(1, 1, 1);
+  const auto angles = primal::dihedral_angles(s);
+  const auto bad = [](void (*spoil)(ExtendedParameters&)) {
+    WeaveOptions o;
+    o.rules = RuleSet::Extended;
+    spoil(o.extended);
+    return o;
+  };
+  EXPECT_THROW(weave(s.surface, bad([](ExtendedParameters& p) { p.sharp = 175; }), angles),
+               InvalidInput);
+  EXPECT_THROW(weave(s.surface, bad([](ExtendedParameters& p) { p.flat = 250; }), angles),
+               InvalidInput);
+  EXPECT_THROW(weave(s.surface, bad([](ExtendedParameters& p) { p.sharp = 0; }), angles),
+               InvalidInput);
+  EXPECT_THROW(
+      weave(s.surface, bad([](ExtendedParameters& p) { p.little_sharp_nonconvex = 360; }), angles),
+      InvalidInput);
+  EXPECT_THROW(check_parameters(bad([](ExtendedParameters& p) { p.little_sharp = 100; }).extended),
+               InvalidInput);
+  EXPECT_NO_THROW(check_parameters(ExtendedParameters{}));
+  // the reliable rule set does not read them
+  WeaveOptions reliable = bad([](ExtendedParameters& p) { p.sharp = 175; });
+  reliable.rules = RuleSet::Reliable;
+  EXPECT_NO_THROW(weave(s.surface, reliable, angles));
+}
+
+TEST(Extended, IsDeterministic) {
+  for (const auto& s : {ogrid_cylinder(2), valley_ended_bar(), test::rhombic_dodecahedron()}) {
+    const WeaveResult a = weave_extended(s, extended_options());
+    const WeaveResult b = weave_extended(s, extended_options());
+    EXPECT_EQ(a.complex.hexes, b.complex.hexes);
+    EXPECT_EQ(rules_applied(a), rules_applied(b));
   }
 }
 
