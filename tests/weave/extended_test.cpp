@@ -359,8 +359,10 @@ TEST(ExtendedFilters, SecondConvexPrefersTheSharpEnd) {
 }
 
 TEST(ExtendedFilters, ParallelCrossingShrinksAlongTheCylinderRim) {
-  // The O-grid cylinder two layers high: once a cap layer is gone, the ring loop along the
-  // rim runs beside the cap's ring loop across sharp edges, and parallel crossing takes it.
+  // The O-grid cylinder two layers high: the first shrink is the same with or without the
+  // rule; at the second, a ring loop around the rim runs beside the ring loop of the O-grid
+  // across sharp edges, and parallel crossing shrinks it toward that loop (without the rule,
+  // the filters take another side).
   const auto s = ogrid_cylinder(2);
   const Pair p = weave_with_and_without(s, &ExtendedParameters::parallel_crossing);
   const int at = first_divergence(p.on, p.off);
