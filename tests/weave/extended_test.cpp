@@ -268,8 +268,8 @@ primal::SurfaceMesh valley_ended_bar() {
 }
 
 /// The 1 x 1 x 3 bar whose bottom end is tapered: the bottom face shrunk to half its width
-/// and raised to z = 0.75, so that its four edges are little sharp (about 117 and 153
-/// degrees) instead of sharp.
+/// and raised to z = 0.75, so that its four edges are little sharp (135 degrees) instead of
+/// sharp (90).
 primal::SurfaceMesh tapered_bar() {
   primal::SurfaceMesh s = test::box_surface(1, 1, 3);
   for (Eigen::Index n = 0; n < s.points.rows(); ++n)
@@ -301,8 +301,8 @@ Pair weave_with_and_without(const primal::SurfaceMesh& s, bool ExtendedParameter
 }
 
 TEST(ExtendedFilters, NonConvexKeepsTheShrinkAwayFromAValley) {
-  // The cheapest shrinks (an end cell, 8 faces) would cross a folded end face; the filter
-  // sends the first shrink elsewhere.
+  // The cheapest shrinks (an end cell, 8 faces) would collapse a folded end face, valley
+  // included; the filter sends the first shrink elsewhere.
   const auto s = valley_ended_bar();
   const Pair p = weave_with_and_without(s, &ExtendedParameters::nonconvex_filter);
   ASSERT_EQ(first_divergence(p.on, p.off), 0);
