@@ -100,6 +100,59 @@ std::vector<std::array<int, 3>> ring_cells() {
   return cells;
 }
 
+primal::SurfaceMesh bar_surface(const std::vector<std::array<Eigen::RowVector3d, 4>>& sections) {
+  const int n = static_cast<int>(sections.size()) - 1;
+  primal::HexMesh column = box_hexes(1, 1, n);
+  // box node (i, j, k) has id i + 2 (j + 2 k); corner c of a section is (i, j) below
+  constexpr std::array<std::array<int, 2>, 4> kCorner = {{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
+  for (int k = 0; k <= n; ++k)
+    for (std::size_t c = 0; c < 4; ++c)
+      column.points.row(kCorner[c][0] + 2 * (kCorner[c][1] + 2 * k)) =
+          sections[static_cast<std::size_t>(k)][c];
+  return boundary_of(column);
+}
+
+PlanarQuads ogrid_disk(double s) {
+  PlanarQuads d;
+  // inner grid: point (i, j) for i, j in {0, 1, 2} has index i + 3 j
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) d.points.emplace_back((i - 1) * s, (j - 1) * s);
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i)
+      d.quads.push_back({i + 3 * j, i + 1 + 3 * j, i + 1 + 3 * (j + 1), i + 3 * (j + 1)});
+  // the 8 boundary points of the grid counter-clockwise, each joined to a circle point
+  const std::array<int, 8> ring = {0, 1, 2, 5, 8, 7, 6, 3};
+  for (int k = 0; k < 8; ++k) {
+    const Eigen::RowVector2d p =
+        d.points[static_cast<std::size_t>(ring[static_cast<std::size_t>(k)])];
+    d.points.push_back(p.normalized());
+  }
+  for (int k = 0; k < 8; ++k) {
+    const int next = (k + 1) % 8;
+    d.quads.push_back(
+        {ring[static_cast<std::size_t>(k)], 9 + k, 9 + next, ring[static_cast<std::size_t>(next)]});
+  }
+  return d;
+}
+
+primal::HexMesh extruded_hexes(const PlanarQuads& section, const std::vector<double>& heights) {
+  primal::HexMesh m;
+  const auto n = static_cast<int>(section.points.size());
+  const auto id = [n](int point, int layer) { return NodeId(point + n * layer); };
+  m.points.resize(static_cast<Eigen::Index>(section.points.size() * heights.size()), 3);
+  for (std::size_t k = 0; k < heights.size(); ++k)
+    for (std::size_t p = 0; p < section.points.size(); ++p)
+      m.points.row(id(static_cast<int>(p), static_cast<int>(k)).value()) << section.points[p].x(),
+          section.points[p].y(), heights[k];
+  m.complex.num_nodes = static_cast<std::size_t>(m.points.rows());
+  for (int k = 0; k + 1 < static_cast<int>(heights.size()); ++k)
+    for (const auto& q : section.quads)
+      m.complex.hexes.push_back({id(q[0], k), id(q[1], k), id(q[2], k), id(q[3], k),
+                                 id(q[0], k + 1), id(q[1], k + 1), id(q[2], k + 1),
+                                 id(q[3], k + 1)});
+  return m;
+}
+
 primal::SurfaceMesh rhombic_dodecahedron() {
   primal::SurfaceMesh s;
   // nodes 0..7: cube corners (+-1,+-1,+-1); 8..13: (+-2,0,0), (0,+-2,0), (0,0,+-2)

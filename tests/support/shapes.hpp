@@ -36,6 +36,27 @@ std::vector<std::array<int, 3>> lblock_cells();
 /// Eight unit cubes: the 3x3x1 slab minus its centre (a square ring, genus 1).
 std::vector<std::array<int, 3>> ring_cells();
 
+/// The boundary of a column of n = sections.size() - 1 hexes (4n + 2 quads, the topology of
+/// `box_surface(1, 1, n)`) whose k-th cross-section has the corners `sections[k]`, listed as
+/// the box's nodes (0,0), (1,0), (1,1), (0,1) of layer k. Outward when every hex of the column
+/// is positively oriented (as for the straight bar, cross-sections counter-clockwise seen from
+/// the next one). \pre sections.size() >= 2.
+primal::SurfaceMesh bar_surface(const std::vector<std::array<Eigen::RowVector3d, 4>>& sections);
+
+/// A planar quad mesh: points in the xy-plane and counter-clockwise quads over them.
+struct PlanarQuads {
+  std::vector<Eigen::RowVector2d> points;
+  std::vector<std::array<int, 4>> quads;
+};
+
+/// The O-grid disk of radius 1: a 2 x 2 grid on the square [-s, s]^2 ringed by 8 quads out to
+/// 8 points of the unit circle (12 quads, 17 points).
+PlanarQuads ogrid_disk(double s = 0.35);
+
+/// The prism over `section`: one layer of hexes between each two consecutive heights (z),
+/// hexes positively oriented. \pre heights increasing, at least two.
+primal::HexMesh extruded_hexes(const PlanarQuads& section, const std::vector<double>& heights);
+
 /// The rhombic dodecahedron: 12 rhombi, 14 nodes, outward.
 primal::SurfaceMesh rhombic_dodecahedron();
 

@@ -1,0 +1,113 @@
+// The rule set `extended` on Gmsh's transfinite surfaces of the shared corpus, compared hex by
+// hex with Gmsh's own structured hex meshes (`*_tf_coarse.reference_hex.msh`), label `corpus`.
+// The weave of every loop-clean genus-0 file with `extended` is checked by
+// corpus_weave_test.cpp (the pipeline's default rule set is `extended`), not repeated here.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <iostream>
+#include <string>
+
+#include "stcweave/primal/io.hpp"
+#include "stcweave/primal/pipeline.hpp"
+#include "support/compare.hpp"
+
+namespace stcweave {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kGmsh = fs::path(STCWEAVE_SHARED_DATA) / "gmsh";
+
+/// The pipeline with `extended` (checked, no node positioning: only the topology matters).
+primal::MeshResult mesh_extended(const fs::path& obj) {
+  primal::MeshOptions options;
+  options.weave.rules = weave::RuleSet::Extended;
+  options.weave.check = true;
+  options.untangle = false;
+  return primal::mesh_file(primal::read_mesh(obj), options);
+}
+
+primal::HexMesh reference_of(const fs::path& msh) {
+  const primal::MeshFile file = primal::read_mesh(msh);
+  primal::HexMesh m;
+  m.points = file.points;
+  m.complex.hexes = file.hexes;
+  m.complex.num_nodes = static_cast<std::size_t>(file.points.rows());
+  return m;
+}
+
+class CorpusExtended : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!fs::exists(kGmsh)) GTEST_SKIP() << "shared data not found at " << STCWEAVE_SHARED_DATA;
+  }
+};
+
+/// Weaves `name`_tf_coarse.obj and compares with its reference hex mesh.
+void expect_reference_mesh(const std::string& name, std::size_t hexes) {
+  const primal::MeshResult r = mesh_extended(kGmsh / (name + "_tf_coarse.obj"));
+  EXPECT_TRUE(r.validation.valid) << r.validation.summary();
+  EXPECT_EQ(r.mesh.complex.hexes.size(), hexes);
+  const primal::HexMesh reference = reference_of(kGmsh / (name + "_tf_coarse.reference_hex.msh"));
+  ASSERT_EQ(reference.complex.hexes.size(), hexes) << "the reference itself";
+  std::string why;
+  EXPECT_TRUE(test::same_connectivity(r.mesh, reference, &why)) << why;
+}
+
+TEST_F(CorpusExtended, CubeGivesTheReferenceMesh) {
+  expect_reference_mesh("cube", 125);
+}
+
+TEST_F(CorpusExtended, LBlockGivesTheReferenceMesh) {
+  expect_reference_mesh("lblock", 81);
+}
+
+TEST_F(CorpusExtended, CylinderGivesAValidComplexShortOfTheOGrid) {
+  // The reference is the 105-hex O-grid; reaching it needs the parallel merging rule (seed
+  // sect. 5: the ring of hexes around the core), which is not implemented. Until then the
+  // weave must at least be a valid complex; the gap is recorded, not asserted.
+  const primal::MeshResult r = mesh_extended(kGmsh / "cylinder_tf_coarse.obj");
+  EXPECT_TRUE(r.validation.valid) << r.validation.summary();
+  const std::size_t hexes = r.mesh.complex.hexes.size();
+  EXPECT_GT(hexes, 0u);
+  RecordProperty("hexes", static_cast<int>(hexes));
+  RecordProperty("reference_hexes", 105);
+  const bool same =
+      test::same_connectivity(r.mesh, reference_of(kGmsh / "cylinder_tf_coarse.reference_hex.msh"));
+  RecordProperty("same_connectivity_as_reference", same ? "yes" : "no");
+  std::cout << "[ gap      ] cylinder_tf_coarse: extended gives " << hexes
+            << " hexes, the O-grid reference 105 (parallel merging not implemented)\n";
+}
+
+// Disabled: needs the parallel merging rule of seed sect. 5, not implemented yet (extended
+// gives 135 hexes today). Enable it with that rule.
+TEST_F(CorpusExtended, DISABLED_CylinderGivesTheOGrid) {
+  expect_reference_mesh("cylinder", 105);
+}
+
+// Disabled: a weaver defect. Without backtracking, extended on cylinder_a6_trisubdiv_coarse
+// (168 quads) does not finish. From rule 2476 on, (almost) every shrink fails ("every node on
+// the shrinking side is blocked": seams refused because the merge would make two hexes share
+// more than one face, blind chords refused) after one or two rules; backtracking off, the
+// partial work is kept, the front grows by about two faces per such hex and the cycle select,
+// fail, keep never ends: by rule 4000, 1900 failed shrinks and 2990 front faces (82 at rule
+// 2470), each selection slower than the last (5000 rules take 26 s; the default limit, about
+// 37,400 rules, is out of reach in practice). With backtracking (the default) the same file
+// gives 1300 hexes in 3758 rules; reliable without backtracking gives 56.
+// The limit below (1.3 times what the backtracking weave needs; raise it if a fix needs more)
+// makes the failure quick (WeaveError) instead of a hang.
+TEST_F(CorpusExtended, DISABLED_CylinderTrisubdivCompletesWithoutBacktracking) {
+  primal::MeshOptions options;
+  options.weave.rules = weave::RuleSet::Extended;
+  options.weave.backtrack = false;
+  options.weave.max_rules = 5000;
+  options.untangle = false;
+  primal::MeshResult r;
+  ASSERT_NO_THROW(r = primal::mesh_file(
+                      primal::read_mesh(kGmsh / "cylinder_a6_trisubdiv_coarse.obj"), options));
+  EXPECT_TRUE(r.validation.valid) << r.validation.summary();
+}
+
+}  // namespace
+}  // namespace stcweave
