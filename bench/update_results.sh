@@ -29,3 +29,26 @@ stcweave="$build/bin/stcweave"
 } > docs/results.md.tmp
 mv docs/results.md.tmp docs/results.md
 echo "update_results.sh: wrote docs/results.md"
+
+# README's results section, between its two markers: the corpus summary, the side-by-side
+# rows of the inputs that were woven by at least one rule set (rejected inputs are listed in
+# docs/results.md), and the scaling lines of the generated sweep.
+awk '
+  FNR == 1 { file++ }
+  file == 1 && /^# stcweave bench: bench\/shared.manifest/ { part = "summary"; next }
+  file == 1 && /^## Side by side/ { part = "side"; print "#### Shared corpus, side by side (woven inputs)\n"; next }
+  file == 1 && /^## / { part = "" }
+  file == 1 && /^### Scaling/ { part = "scaling"; print "#### Scaling on generated boxes\n"; next }
+  file == 1 && /^### / && !/^### Scaling/ { if (part == "scaling") part = "" }
+  part == "summary" { print; next }
+  part == "side" && (/^\| input/ || /^\|---/ || (/^\| / && !/rejected: .*\| rejected: /)) { print; next }
+  part == "side" && /^$/ { print; next }
+  part == "scaling" && (/^- / || /^Least/ || /^$/) { print; next }
+' docs/results.md > "$out/readme-results.md"
+awk -v section="$out/readme-results.md" '
+  /<!-- results:begin -->/ { print; while ((getline line < section) > 0) print line; skip = 1; next }
+  /<!-- results:end -->/ { skip = 0 }
+  !skip { print }
+' README.md > README.md.tmp
+mv README.md.tmp README.md
+echo "update_results.sh: updated the results section of README.md"
