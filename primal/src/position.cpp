@@ -375,7 +375,7 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
   auto [dmin, bad] = problem.min_determinant();
   double eps = dmin > 0.0 ? 1e-6 : 1.0;
   problem.set_epsilon(eps);
-  report.energy_before = problem.evaluate(nullptr);
+  const Eigen::VectorXd start_positions = x;
   report.stop = "no free node";
 
   if (problem.num_free() > 0 && !mesh.complex.hexes.empty()) {
@@ -394,8 +394,10 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
     std::size_t best_bad = bad;
     int stalled = 0;
     report.stop = "iteration limit";
+    double used_eps = eps;
     for (int outer = 0; outer < options.max_outer_iterations; ++outer) {
       problem.set_epsilon(eps);
+      used_eps = eps;
       problem.set_variables(x);
       const double start = problem.evaluate(nullptr);
       objective.reset(x, start);
@@ -431,9 +433,21 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
       }
       eps = std::sqrt(1e-12 + 0.04 * std::min(dmin, 0.0) * std::min(dmin, 0.0));
     }
-    report.epsilon = eps;
+    report.epsilon = used_eps;
+    // Both energies with the last round's eps, so that they compare.
+    problem.set_epsilon(report.epsilon);
+    problem.set_variables(start_positions);
+    report.energy_before = problem.evaluate(nullptr);
+    problem.set_variables(x);
+    report.energy_after = problem.evaluate(nullptr);
     problem.store(mesh);
+  } else {
+    report.epsilon = eps;
+    report.energy_before = report.energy_after = problem.evaluate(nullptr);
   }
+  if (!report.impossible.empty())
+    report.stop += "; " + std::to_string(report.impossible.size()) +
+                   " impossible corners left out (see impossible)";
 
   const QualitySummary after = summarize_quality(mesh, 0);
   report.inverted_after = after.inverted;
@@ -444,6 +458,7 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
       report.corners_inverted_after += d <= 0.0;
     if (after.per_hex[hx] <= 0.0) report.inverted.emplace_back(hx);
   }
+  report.untangled = report.inverted_after == 0 && report.corners_inverted_after == 0;
   report.certified = count_bezier_validity(mesh, options.certify_depth);
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return report;

@@ -85,10 +85,12 @@ struct PositionReport {
   std::size_t free_nodes = 0;
   std::size_t outer_iterations = 0;  ///< rounds of (minimise, lower eps)
   std::size_t iterations = 0;        ///< L-BFGS iterations over all rounds
-  double energy_before = 0.0;        ///< energy at the start (eps of the first round)
-  double energy_after = 0.0;         ///< energy at the end (eps of the last round)
-  double epsilon = 0.0;              ///< last eps
-  std::size_t inverted_before = 0;   ///< hexes with scaled Jacobian <= 0 (9 points)
+  /// Energy of the starting positions and of the final ones, both with the last round's eps
+  /// (so the two are comparable; a tangled start gives a large `energy_before`).
+  double energy_before = 0.0;
+  double energy_after = 0.0;
+  double epsilon = 0.0;             ///< last eps
+  std::size_t inverted_before = 0;  ///< hexes with scaled Jacobian <= 0 (9 points)
   std::size_t inverted_after = 0;
   std::size_t corners_inverted_before = 0;  ///< corners with det <= 0
   std::size_t corners_inverted_after = 0;
@@ -99,8 +101,16 @@ struct PositionReport {
   ValidityCounts certified;
   std::vector<ImpossibleCorner> impossible;  ///< corners excluded as impossible
   std::vector<HexId> inverted;               ///< hexes still inverted (scaled Jacobian <= 0)
-  bool converged = false;                    ///< every corner positive and the energy settled
-  std::string stop;  ///< why it stopped: "converged", "stalled", "iteration limit", ...
+  /// The optimisation settled: every corner it could act on is positive and the energy
+  /// changed by less than `energy_tolerance` over the last round.
+  bool converged = false;
+  /// No hex inverted after positioning: every corner determinant > 0 and every scaled
+  /// Jacobian (9 points) > 0. False whenever `impossible` is not empty.
+  bool untangled = false;
+  /// Why it stopped: "converged", "stalled: N corners still inverted", "iteration limit",
+  /// "no free node"; followed by "; N impossible corners left out (see impossible)" when
+  /// some corners could not be fixed by any position.
+  std::string stop;
   double seconds = 0.0;
 };
 
