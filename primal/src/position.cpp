@@ -3,6 +3,8 @@
 #include <LBFGS.h>
 
 #include <Eigen/Core>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -12,7 +14,6 @@
 #include <map>
 #include <stdexcept>
 
-#include "stcweave/primal/recover.hpp"
 #include "stcweave/stc/errors.hpp"
 
 namespace stcweave::primal {
@@ -273,6 +274,64 @@ class Objective {
   double best_energy_ = std::numeric_limits<double>::infinity();
 };
 
+/// The harmonic placement of the hex-edge graph with the nodes of `fixed` held: each free
+/// node at the mean of its edge neighbours (uniform weights). The graph Laplacian restricted
+/// to the free nodes is SPD when every free component touches a fixed node; one sparse
+/// Cholesky factorisation, three solves.
+Points harmonic_start(const HexMesh& mesh, const std::vector<bool>& fixed) {
+  const auto n = static_cast<std::size_t>(mesh.points.rows());
+  std::vector<std::int32_t> slot(n, -1);
+  std::vector<bool> used(n, false);
+  for (const stc::Hex& h : mesh.complex.hexes)
+    for (const NodeId v : h) used[v.index()] = true;
+  std::int32_t free = 0;
+  for (std::size_t v = 0; v < n; ++v)
+    if (!fixed[v] && used[v]) slot[v] = free++;
+  Points out = mesh.points;
+  if (free == 0) return out;
+  std::vector<std::pair<std::int32_t, std::int32_t>> edges;
+  edges.reserve(mesh.complex.hexes.size() * 12);
+  for (const stc::Hex& h : mesh.complex.hexes)
+    for (const auto& e : stc::kHexEdges) {
+      std::int32_t a = h[static_cast<std::size_t>(e[0])].value();
+      std::int32_t b = h[static_cast<std::size_t>(e[1])].value();
+      if (a > b) std::swap(a, b);
+      edges.emplace_back(a, b);
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(edges.size() * 4);
+  Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Zero(free, 3);
+  for (const auto& [a, b] : edges) {
+    const std::int32_t sa = slot[static_cast<std::size_t>(a)];
+    const std::int32_t sb = slot[static_cast<std::size_t>(b)];
+    if (sa >= 0) triplets.emplace_back(sa, sa, 1.0);
+    if (sb >= 0) triplets.emplace_back(sb, sb, 1.0);
+    if (sa >= 0 && sb >= 0) {
+      triplets.emplace_back(sa, sb, -1.0);
+      triplets.emplace_back(sb, sa, -1.0);
+    } else if (sa >= 0) {
+      rhs.row(sa) += mesh.points.row(b);
+    } else if (sb >= 0) {
+      rhs.row(sb) += mesh.points.row(a);
+    }
+  }
+  Eigen::SparseMatrix<double> laplacian(free, free);
+  laplacian.setFromTriplets(triplets.begin(), triplets.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(laplacian);
+  if (solver.info() != Eigen::Success)
+    throw SolverError(
+        "position_nodes: the harmonic start cannot be factorised: some free nodes are not "
+        "connected by hex edges to any fixed node");
+  const Eigen::MatrixX3d x = solver.solve(rhs);
+  if (solver.info() != Eigen::Success || !x.allFinite())
+    throw SolverError("position_nodes: the harmonic start failed to solve");
+  for (std::size_t v = 0; v < n; ++v)
+    if (slot[v] >= 0) out.row(static_cast<Eigen::Index>(v)) = x.row(slot[v]);
+  return out;
+}
+
 }  // namespace
 
 std::vector<ImpossibleCorner> impossible_corners(const HexMesh& mesh,
@@ -347,12 +406,23 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
   for (std::size_t v = 0; v < n; ++v)
     fixed[v] = v < options.num_fixed || (!options.fixed.empty() && options.fixed[v]);
 
-  if (options.start == StartPosition::Harmonic) {
-    if (!options.fixed.empty())
-      throw InvalidInput(
-          "position_nodes: the harmonic start needs the fixed nodes to be 0..num_fixed-1 "
-          "(no mask)");
-    (void)harmonic_positions(mesh, options.num_fixed);
+  if (options.start != StartPosition::Keep) {
+    const Points harmonic = harmonic_start(mesh, fixed);
+    bool take = options.start == StartPosition::Harmonic;
+    if (!take) {
+      HexMesh trial{harmonic, {}};
+      const auto count = [](const Points& points, const HexMesh& m) {
+        std::size_t bad = 0;
+        for (const stc::Hex& h : m.complex.hexes)
+          for (double d : hex_corner_jacobians(points, h)) bad += d <= 0.0;
+        return bad;
+      };
+      take = count(harmonic, mesh) < count(mesh.points, mesh);
+    }
+    if (take) {
+      mesh.points = harmonic;
+      report.harmonic_start = true;
+    }
   }
 
   const QualitySummary before = summarize_quality(mesh, 0);

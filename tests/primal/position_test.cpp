@@ -112,12 +112,33 @@ TEST(Position, UntanglesABentBoxWhoseHarmonicPlacementIsTangled) {
   EXPECT_EQ(r.certified.valid, mesh.complex.hexes.size());
 }
 
-TEST(Position, HarmonicStartWithAMaskIsRejected) {
-  HexMesh mesh = test::box_hexes(2, 2, 2);
+TEST(Position, HarmonicStartWorksWithAMask) {
+  // The harmonic placement of a box's interior is the grid itself.
+  HexMesh mesh = test::box_hexes(4, 3, 3);
+  const Points grid = mesh.points;
   PositionOptions options;
   options.fixed = test::boundary_nodes(mesh);
+  test::collapse(mesh, options.fixed);
   options.start = StartPosition::Harmonic;
-  EXPECT_THROW((void)position_nodes(mesh, options), InvalidInput);
+  options.max_outer_iterations = 1;
+  options.max_inner_iterations = 1;
+  const PositionReport r = position_nodes(mesh, options);
+  EXPECT_TRUE(r.harmonic_start);
+  EXPECT_EQ(r.inverted_before, 0u);
+  EXPECT_TRUE(mesh.points.isApprox(grid, 1e-9));
+}
+
+TEST(Position, AutoStartKeepsABetterCurrentPlacement) {
+  // bent box: the harmonic map is tangled, the bent grid is not, so Auto keeps the grid
+  HexMesh mesh = test::box_hexes(6, 6, 6);
+  test::bend(mesh, 6.0, 6.0, 1.0, 1.5 * M_PI);
+  PositionOptions options;
+  options.fixed = test::boundary_nodes(mesh);
+  options.start = StartPosition::Auto;
+  const PositionReport r = position_nodes(mesh, options);
+  EXPECT_FALSE(r.harmonic_start);
+  EXPECT_EQ(r.inverted_before, 0u);
+  EXPECT_EQ(r.inverted_after, 0u);
 }
 
 TEST(Position, MirroredMeshIsRejected) {

@@ -40,8 +40,11 @@ namespace stcweave::primal {
 
 /// Where the free nodes start from.
 enum class StartPosition {
-  Keep,     ///< their current coordinates (e.g. the harmonic placement of recover.hpp)
-  Harmonic  ///< the harmonic placement of the hex-edge graph (recover.hpp) first
+  Keep,      ///< their current coordinates (e.g. the harmonic placement of recover.hpp)
+  Harmonic,  ///< the harmonic placement of the hex-edge graph (every free node at the
+             ///< mean of its edge neighbours, fixed nodes as given), one sparse Cholesky
+  Auto       ///< the harmonic placement when it has fewer inverted corners than the
+             ///< current coordinates (e.g. nodes collapsed or scattered), else Keep
 };
 
 /// Options of `position_nodes`. Defaults are the settings measured to work in
@@ -83,6 +86,7 @@ struct ImpossibleCorner {
 /// What `position_nodes` did.
 struct PositionReport {
   std::size_t free_nodes = 0;
+  bool harmonic_start = false;       ///< the harmonic placement was used as the start
   std::size_t outer_iterations = 0;  ///< rounds of (minimise, lower eps)
   std::size_t iterations = 0;        ///< L-BFGS iterations over all rounds
   /// Energy of the starting positions and of the final ones, both with the last round's eps
@@ -126,7 +130,8 @@ struct PositionReport {
 /// \pre the hexes are positively oriented overall (their total signed volume is > 0).
 /// \throw InvalidInput when a hex names a node out of range, the fixed mask has the wrong
 ///        size, or the total volume is <= 0 (hexes mirrored).
-/// \throw SolverError when the harmonic start fails (StartPosition::Harmonic).
+/// \throw SolverError when the harmonic start fails (StartPosition::Harmonic or Auto): a
+///        free node not connected by hex edges to any fixed node.
 PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options);
 
 }  // namespace stcweave::primal
