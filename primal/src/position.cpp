@@ -13,6 +13,7 @@
 #include <limits>
 #include <map>
 #include <stdexcept>
+#include <thread>
 
 #include "stcweave/stc/errors.hpp"
 
@@ -133,6 +134,7 @@ class Problem {
       positions_.row(static_cast<Eigen::Index>(v)) =
           (point(mesh, static_cast<std::int32_t>(v)) - centre_).transpose() / h_;
     hex_grad_.resize(hexes_.size() * 24);
+    hex_energy_.resize(hexes_.size());
   }
 
   [[nodiscard]] double volume() const { return volume_; }
@@ -178,28 +180,26 @@ class Problem {
   }
 
   /// Energy at the current positions; with `grad` (size 3 * free nodes) its gradient.
+  /// Large meshes are evaluated by `threads_` threads on contiguous hex ranges; every hex
+  /// writes its own energy and gradient slots, which are then summed in a fixed order, so
+  /// the result does not depend on the number of threads.
   double evaluate(Eigen::VectorXd* grad) {
-    double total = 0.0;
-    std::array<Eigen::Vector3d, 3> g;
-    for (std::size_t hx = 0; hx < hexes_.size(); ++hx) {
-      double* hg = hex_grad_.data() + hx * 24;
-      if (grad != nullptr) std::fill(hg, hg + 24, 0.0);
-      for (std::size_t k = 0; k < 8; ++k) {
-        if ((active_[hx] & (1u << k)) == 0) continue;
-        const std::array<Eigen::Vector3d, 3> e = edges(hx, k);
-        total += corner_energy(e, eps_, theta_, grad != nullptr ? &g : nullptr);
-        if (grad == nullptr) continue;
-        const auto& c = kCorners[k];
-        for (std::size_t j = 0; j < 3; ++j) {
-          double* to = hg + 3 * static_cast<std::size_t>(c[j + 1]);
-          double* from = hg + 3 * static_cast<std::size_t>(c[0]);
-          for (int a = 0; a < 3; ++a) {
-            to[a] += g[j](a);
-            from[a] -= g[j](a);
-          }
-        }
-      }
+    const std::size_t m = hexes_.size();
+    const std::size_t parts = m >= kParallelHexes ? threads_ : 1;
+    if (parts <= 1) {
+      evaluate_hexes(0, m, grad != nullptr);
+    } else {
+      std::vector<std::thread> pool;
+      pool.reserve(parts - 1);
+      for (std::size_t t = 1; t < parts; ++t)
+        pool.emplace_back([this, t, parts, m, grad] {
+          evaluate_hexes(m * t / parts, m * (t + 1) / parts, grad != nullptr);
+        });
+      evaluate_hexes(0, m / parts, grad != nullptr);
+      for (std::thread& th : pool) th.join();
     }
+    double total = 0.0;
+    for (double e : hex_energy_) total += e;
     if (grad != nullptr) {
       grad->setZero(static_cast<Eigen::Index>(3 * free_.size()));
       for (std::size_t i = 0; i < free_.size(); ++i)
@@ -211,7 +211,38 @@ class Problem {
     return std::isfinite(total) ? total : std::numeric_limits<double>::infinity();
   }
 
+  void set_threads(std::size_t threads) { threads_ = std::max<std::size_t>(1, threads); }
+
  private:
+  /// Below this many hexes one thread evaluates (thread start-up would dominate).
+  static constexpr std::size_t kParallelHexes = 4096;
+
+  /// Energy (and gradient slots) of hexes first .. last-1.
+  void evaluate_hexes(std::size_t first, std::size_t last, bool with_gradient) {
+    std::array<Eigen::Vector3d, 3> g;
+    for (std::size_t hx = first; hx < last; ++hx) {
+      double* hg = hex_grad_.data() + hx * 24;
+      if (with_gradient) std::fill(hg, hg + 24, 0.0);
+      double energy = 0.0;
+      for (std::size_t k = 0; k < 8; ++k) {
+        if ((active_[hx] & (1u << k)) == 0) continue;
+        const std::array<Eigen::Vector3d, 3> e = edges(hx, k);
+        energy += corner_energy(e, eps_, theta_, with_gradient ? &g : nullptr);
+        if (!with_gradient) continue;
+        const auto& c = kCorners[k];
+        for (std::size_t j = 0; j < 3; ++j) {
+          double* to = hg + 3 * static_cast<std::size_t>(c[j + 1]);
+          double* from = hg + 3 * static_cast<std::size_t>(c[0]);
+          for (int a = 0; a < 3; ++a) {
+            to[a] += g[j](a);
+            from[a] -= g[j](a);
+          }
+        }
+      }
+      hex_energy_[hx] = energy;
+    }
+  }
+
   static Eigen::Vector3d point(const HexMesh& mesh, std::int32_t v) {
     return mesh.points.row(v).transpose();
   }
@@ -239,6 +270,8 @@ class Problem {
   double volume_ = 0.0;
   Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> positions_;
   std::vector<double> hex_grad_;
+  std::vector<double> hex_energy_;
+  std::size_t threads_ = 1;
 };
 
 /// The functor LBFGS++ minimises; it remembers the best point it evaluated, so that a
@@ -433,6 +466,8 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
       report.corners_inverted_before += d <= 0.0;
 
   Problem problem(mesh, fixed, options.theta);
+  problem.set_threads(options.threads > 0 ? static_cast<std::size_t>(options.threads)
+                                          : std::max(1u, std::thread::hardware_concurrency()));
   if (!mesh.complex.hexes.empty() && !(problem.volume() > 0.0))
     throw InvalidInput("position_nodes: the hexes enclose a total volume of " +
                        std::to_string(problem.volume()) +

@@ -96,6 +96,21 @@ TEST(Position, IsDeterministic) {
   EXPECT_EQ(ra.energy_after, rb.energy_after);
 }
 
+TEST(Position, ResultDoesNotDependOnTheThreadCount) {
+  HexMesh a = test::box_hexes(17, 16, 16);  // 4352 hexes: above the parallel threshold
+  PositionOptions options;
+  options.fixed = test::boundary_nodes(a);
+  test::scramble(a, options.fixed, 0.5, 5);
+  HexMesh b = a;
+  options.threads = 1;
+  const PositionReport ra = position_nodes(a, options);
+  options.threads = 3;
+  const PositionReport rb = position_nodes(b, options);
+  EXPECT_TRUE(a.points == b.points);
+  EXPECT_EQ(ra.iterations, rb.iterations);
+  EXPECT_EQ(ra.inverted_after, 0u);
+}
+
 TEST(Position, UntanglesABentBoxWhoseHarmonicPlacementIsTangled) {
   // research/geometry.md §3.3: a 6^3 grid bent into a 270-degree C; the harmonic map of the
   // bent boundary inverts many hexes; the untangler reaches 0 (measured min SJ there 0.78).

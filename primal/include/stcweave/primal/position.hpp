@@ -27,7 +27,8 @@
 /// optimiser does not chase an impossible goal; the outer loop also stops when the count
 /// of inverted corners has not dropped for `stall_iterations` rounds.
 ///
-/// Deterministic: single-threaded, no randomness; the same input gives the same output.
+/// Deterministic: no randomness, and the energy is summed in a fixed order whatever the
+/// number of threads, so the same input gives the same output bit for bit.
 
 #include <cstddef>
 #include <string>
@@ -73,6 +74,9 @@ struct PositionOptions {
   int memory = 6;
   /// Subdivision depth of the Bézier validity certification (0: no subdivision).
   int certify_depth = 4;
+  /// Threads evaluating the energy of meshes of 4096 hexes or more (0: one per hardware
+  /// thread). The result does not depend on it.
+  int threads = 0;
 };
 
 /// A hex corner that no position of the free nodes can make positive.
