@@ -69,7 +69,7 @@ struct PositionOptions {
   /// (relative) over a round.
   double energy_tolerance = 1e-5;
   /// Give up when the number of inverted corners has not dropped for this many rounds.
-  int stall_iterations = 10;
+  int stall_iterations = 3;
   /// L-BFGS memory.
   int memory = 6;
   /// Subdivision depth of the Bézier validity certification (0: no subdivision).
