@@ -31,8 +31,43 @@ struct MeshArgs {
   bool keep_invalid = false;
   bool quiet = false;
   bool progress = false;
+  // Positioning (untangling) of the interior nodes.
   bool no_untangle = false;
+  int position_rounds = 100;
+  int position_iterations = 3000;
+  double position_theta = 0.5;
+  int certify_depth = 4;
 };
+
+/// The position report as JSON (hex ids as "h12").
+nlohmann::json position_json(const primal::PositionReport& p) {
+  nlohmann::json impossible = nlohmann::json::array();
+  for (const auto& c : p.impossible)
+    impossible.push_back({{"hex", c.hex.str()}, {"corner", c.corner}, {"reason", c.reason}});
+  nlohmann::json inverted = nlohmann::json::array();
+  for (const HexId h : p.inverted) inverted.push_back(h.str());
+  return {{"free_nodes", p.free_nodes},
+          {"rounds", p.outer_iterations},
+          {"iterations", p.iterations},
+          {"energy_before", p.energy_before},
+          {"energy_after", p.energy_after},
+          {"epsilon", p.epsilon},
+          {"inverted_before", p.inverted_before},
+          {"inverted_after", p.inverted_after},
+          {"corners_inverted_before", p.corners_inverted_before},
+          {"corners_inverted_after", p.corners_inverted_after},
+          {"min_scaled_jacobian_before", p.min_scaled_jacobian_before},
+          {"min_scaled_jacobian_after", p.min_scaled_jacobian_after},
+          {"mean_scaled_jacobian_after", p.mean_scaled_jacobian_after},
+          {"certified_valid", p.certified.valid},
+          {"certified_invalid", p.certified.invalid},
+          {"certified_uncertain", p.certified.uncertain},
+          {"converged", p.converged},
+          {"stop", p.stop},
+          {"impossible_corners", impossible},
+          {"inverted_hexes", inverted},
+          {"seconds", p.seconds}};
+}
 
 nlohmann::json trace_json(const weave::TraceEvent& e) {
   nlohmann::json j;
@@ -105,6 +140,10 @@ int run_mesh(const MeshArgs& a) {
     };
   options.keep_invalid = a.keep_invalid;
   options.untangle = !a.no_untangle;
+  options.position.max_outer_iterations = a.position_rounds;
+  options.position.max_inner_iterations = a.position_iterations;
+  options.position.theta = a.position_theta;
+  options.position.certify_depth = a.certify_depth;
   const bool show_progress = a.progress || (!a.quiet && isatty(STDERR_FILENO) != 0);
   if (show_progress) {
     options.on_stage = [](const std::string& s) { std::cerr << "stcweave: " << s << "...\n"; };
@@ -158,6 +197,8 @@ int run_mesh(const MeshArgs& a) {
                        {"mean_scaled_jacobian", r.quality.mean_scaled_jacobian},
                        {"inverted", r.quality.inverted},
                        {"below_0_2", r.quality.below_0_2}};
+  report["untangled"] = options.untangle;
+  if (options.untangle) report["position"] = position_json(r.position);
   const auto& s = r.woven.stats;
   report["weave"] = {{"selections", s.selections},
                      {"shrinks", s.shrinks},
@@ -171,15 +212,12 @@ int run_mesh(const MeshArgs& a) {
                      {"rolled_back_shrinks", s.rolled_back_shrinks},
                      {"parallel_merges", s.parallel_merges},
                      {"nonconvexity_seams", s.nonconvexity_seams}};
-  report["seconds"] = {{"diagnose", r.seconds.diagnose},
-                       {"orient", r.seconds.orient},
-                       {"weave", r.seconds.weave},
-                       {"validate", r.seconds.validate},
-                       {"recover", r.seconds.recover},
-                       {"quality", r.seconds.quality},
-                       {"stc", stc_seconds},
-                       {"write", write_seconds},
-                       {"total", r.seconds.total() + stc_seconds + write_seconds}};
+  report["seconds"] = {
+      {"diagnose", r.seconds.diagnose}, {"orient", r.seconds.orient},
+      {"weave", r.seconds.weave},       {"validate", r.seconds.validate},
+      {"recover", r.seconds.recover},   {"position", r.seconds.position},
+      {"quality", r.seconds.quality},   {"stc", stc_seconds},
+      {"write", write_seconds},         {"total", r.seconds.total() + stc_seconds + write_seconds}};
 
   if (!a.report.empty()) write_text_atomically(a.report, report.dump(1) + "\n");
   if (!a.trace.empty()) write_text_atomically(a.trace, *trace_text);
@@ -193,8 +231,12 @@ int run_mesh(const MeshArgs& a) {
     std::cout << "valid      " << (r.validation.valid ? "yes" : "NO: " + r.validation.summary())
               << "\n";
     std::cout << "quality    min scaled Jacobian " << r.quality.min_scaled_jacobian << ", mean "
-              << r.quality.mean_scaled_jacobian << ", inverted " << r.quality.inverted
-              << " (harmonic placement, not untangled)\n";
+              << r.quality.mean_scaled_jacobian << ", inverted " << r.quality.inverted;
+    if (options.untangle)
+      std::cout << " (untangled: " << r.position.inverted_before << " inverted before, "
+                << r.position.stop << ")\n";
+    else
+      std::cout << " (harmonic placement, not untangled)\n";
     std::cout << "time       " << r.seconds.total() + stc_seconds + write_seconds << " s (weave "
               << r.seconds.weave << " s)\n";
     std::cout << "output     " << a.output << "\n";
@@ -222,7 +264,7 @@ Action add_mesh_command(CLI::App& app) {
   add_weave_options(sub, args->weave);
   sub->add_option("--report", args->report,
                   "write a JSON report (hexes, nodes, interior_nodes, valid, sheets, chords, "
-                  "quality, seconds per stage)");
+                  "quality, position report, seconds per stage)");
   sub->add_option("--trace", args->trace,
                   "write a JSON-lines trace: one line per loop selection (candidates, weights, "
                   "choice) and per rule application (rule, node, faces, hex)");
@@ -231,7 +273,23 @@ Action add_mesh_command(CLI::App& app) {
   sub->add_flag("--keep-invalid", args->keep_invalid,
                 "write the mesh even when the woven complex is invalid (exit code 3 all the same)");
   sub->add_flag("--no-untangle", args->no_untangle,
-                "keep the harmonic placement of the interior nodes (skip untangling)");
+                "keep the harmonic placement of the interior nodes (no untangling)");
+  sub->add_option("--position-rounds", args->position_rounds,
+                  "untangling: most rounds of (minimise, lower epsilon)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
+  sub->add_option("--position-iterations", args->position_iterations,
+                  "untangling: most L-BFGS iterations per round")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 10000000));
+  sub->add_option("--position-theta", args->position_theta,
+                  "untangling: weight of the volume term against the shape term, in [0, 1]")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  sub->add_option("--certify-depth", args->certify_depth,
+                  "subdivision depth of the Bezier validity certification of every hex")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 8));
   sub->add_flag("--progress", args->progress, "print stage and weaving progress on stderr");
   sub->add_flag("-q,--quiet", args->quiet, "print nothing on success");
   return [args] { return run_mesh(*args); };

@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   add(cli::add_sheets_command);
   add(cli::add_bench_command);
   add(cli::add_generate_command);
+  add(cli::add_quality_command);
 
   try {
     app.parse(argc, argv);

@@ -3,6 +3,8 @@
 #include <LBFGS.h>
 
 #include <Eigen/Core>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -11,8 +13,8 @@
 #include <limits>
 #include <map>
 #include <stdexcept>
+#include <thread>
 
-#include "stcweave/primal/recover.hpp"
 #include "stcweave/stc/errors.hpp"
 
 namespace stcweave::primal {
@@ -132,6 +134,7 @@ class Problem {
       positions_.row(static_cast<Eigen::Index>(v)) =
           (point(mesh, static_cast<std::int32_t>(v)) - centre_).transpose() / h_;
     hex_grad_.resize(hexes_.size() * 24);
+    hex_energy_.resize(hexes_.size());
   }
 
   [[nodiscard]] double volume() const { return volume_; }
@@ -177,28 +180,26 @@ class Problem {
   }
 
   /// Energy at the current positions; with `grad` (size 3 * free nodes) its gradient.
+  /// Large meshes are evaluated by `threads_` threads on contiguous hex ranges; every hex
+  /// writes its own energy and gradient slots, which are then summed in a fixed order, so
+  /// the result does not depend on the number of threads.
   double evaluate(Eigen::VectorXd* grad) {
-    double total = 0.0;
-    std::array<Eigen::Vector3d, 3> g;
-    for (std::size_t hx = 0; hx < hexes_.size(); ++hx) {
-      double* hg = hex_grad_.data() + hx * 24;
-      if (grad != nullptr) std::fill(hg, hg + 24, 0.0);
-      for (std::size_t k = 0; k < 8; ++k) {
-        if ((active_[hx] & (1u << k)) == 0) continue;
-        const std::array<Eigen::Vector3d, 3> e = edges(hx, k);
-        total += corner_energy(e, eps_, theta_, grad != nullptr ? &g : nullptr);
-        if (grad == nullptr) continue;
-        const auto& c = kCorners[k];
-        for (std::size_t j = 0; j < 3; ++j) {
-          double* to = hg + 3 * static_cast<std::size_t>(c[j + 1]);
-          double* from = hg + 3 * static_cast<std::size_t>(c[0]);
-          for (int a = 0; a < 3; ++a) {
-            to[a] += g[j](a);
-            from[a] -= g[j](a);
-          }
-        }
-      }
+    const std::size_t m = hexes_.size();
+    const std::size_t parts = m >= kParallelHexes ? threads_ : 1;
+    if (parts <= 1) {
+      evaluate_hexes(0, m, grad != nullptr);
+    } else {
+      std::vector<std::thread> pool;
+      pool.reserve(parts - 1);
+      for (std::size_t t = 1; t < parts; ++t)
+        pool.emplace_back([this, t, parts, m, grad] {
+          evaluate_hexes(m * t / parts, m * (t + 1) / parts, grad != nullptr);
+        });
+      evaluate_hexes(0, m / parts, grad != nullptr);
+      for (std::thread& th : pool) th.join();
     }
+    double total = 0.0;
+    for (double e : hex_energy_) total += e;
     if (grad != nullptr) {
       grad->setZero(static_cast<Eigen::Index>(3 * free_.size()));
       for (std::size_t i = 0; i < free_.size(); ++i)
@@ -210,7 +211,38 @@ class Problem {
     return std::isfinite(total) ? total : std::numeric_limits<double>::infinity();
   }
 
+  void set_threads(std::size_t threads) { threads_ = std::max<std::size_t>(1, threads); }
+
  private:
+  /// Below this many hexes one thread evaluates (thread start-up would dominate).
+  static constexpr std::size_t kParallelHexes = 4096;
+
+  /// Energy (and gradient slots) of hexes first .. last-1.
+  void evaluate_hexes(std::size_t first, std::size_t last, bool with_gradient) {
+    std::array<Eigen::Vector3d, 3> g;
+    for (std::size_t hx = first; hx < last; ++hx) {
+      double* hg = hex_grad_.data() + hx * 24;
+      if (with_gradient) std::fill(hg, hg + 24, 0.0);
+      double energy = 0.0;
+      for (std::size_t k = 0; k < 8; ++k) {
+        if ((active_[hx] & (1u << k)) == 0) continue;
+        const std::array<Eigen::Vector3d, 3> e = edges(hx, k);
+        energy += corner_energy(e, eps_, theta_, with_gradient ? &g : nullptr);
+        if (!with_gradient) continue;
+        const auto& c = kCorners[k];
+        for (std::size_t j = 0; j < 3; ++j) {
+          double* to = hg + 3 * static_cast<std::size_t>(c[j + 1]);
+          double* from = hg + 3 * static_cast<std::size_t>(c[0]);
+          for (int a = 0; a < 3; ++a) {
+            to[a] += g[j](a);
+            from[a] -= g[j](a);
+          }
+        }
+      }
+      hex_energy_[hx] = energy;
+    }
+  }
+
   static Eigen::Vector3d point(const HexMesh& mesh, std::int32_t v) {
     return mesh.points.row(v).transpose();
   }
@@ -238,6 +270,8 @@ class Problem {
   double volume_ = 0.0;
   Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> positions_;
   std::vector<double> hex_grad_;
+  std::vector<double> hex_energy_;
+  std::size_t threads_ = 1;
 };
 
 /// The functor LBFGS++ minimises; it remembers the best point it evaluated, so that a
@@ -272,6 +306,64 @@ class Objective {
   Eigen::VectorXd best_;
   double best_energy_ = std::numeric_limits<double>::infinity();
 };
+
+/// The harmonic placement of the hex-edge graph with the nodes of `fixed` held: each free
+/// node at the mean of its edge neighbours (uniform weights). The graph Laplacian restricted
+/// to the free nodes is SPD when every free component touches a fixed node; one sparse
+/// Cholesky factorisation, three solves.
+Points harmonic_start(const HexMesh& mesh, const std::vector<bool>& fixed) {
+  const auto n = static_cast<std::size_t>(mesh.points.rows());
+  std::vector<std::int32_t> slot(n, -1);
+  std::vector<bool> used(n, false);
+  for (const stc::Hex& h : mesh.complex.hexes)
+    for (const NodeId v : h) used[v.index()] = true;
+  std::int32_t free = 0;
+  for (std::size_t v = 0; v < n; ++v)
+    if (!fixed[v] && used[v]) slot[v] = free++;
+  Points out = mesh.points;
+  if (free == 0) return out;
+  std::vector<std::pair<std::int32_t, std::int32_t>> edges;
+  edges.reserve(mesh.complex.hexes.size() * 12);
+  for (const stc::Hex& h : mesh.complex.hexes)
+    for (const auto& e : stc::kHexEdges) {
+      std::int32_t a = h[static_cast<std::size_t>(e[0])].value();
+      std::int32_t b = h[static_cast<std::size_t>(e[1])].value();
+      if (a > b) std::swap(a, b);
+      edges.emplace_back(a, b);
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(edges.size() * 4);
+  Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Zero(free, 3);
+  for (const auto& [a, b] : edges) {
+    const std::int32_t sa = slot[static_cast<std::size_t>(a)];
+    const std::int32_t sb = slot[static_cast<std::size_t>(b)];
+    if (sa >= 0) triplets.emplace_back(sa, sa, 1.0);
+    if (sb >= 0) triplets.emplace_back(sb, sb, 1.0);
+    if (sa >= 0 && sb >= 0) {
+      triplets.emplace_back(sa, sb, -1.0);
+      triplets.emplace_back(sb, sa, -1.0);
+    } else if (sa >= 0) {
+      rhs.row(sa) += mesh.points.row(b);
+    } else if (sb >= 0) {
+      rhs.row(sb) += mesh.points.row(a);
+    }
+  }
+  Eigen::SparseMatrix<double> laplacian(free, free);
+  laplacian.setFromTriplets(triplets.begin(), triplets.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(laplacian);
+  if (solver.info() != Eigen::Success)
+    throw SolverError(
+        "position_nodes: the harmonic start cannot be factorised: some free nodes are not "
+        "connected by hex edges to any fixed node");
+  const Eigen::MatrixX3d x = solver.solve(rhs);
+  if (solver.info() != Eigen::Success || !x.allFinite())
+    throw SolverError("position_nodes: the harmonic start failed to solve");
+  for (std::size_t v = 0; v < n; ++v)
+    if (slot[v] >= 0) out.row(static_cast<Eigen::Index>(v)) = x.row(slot[v]);
+  return out;
+}
 
 }  // namespace
 
@@ -347,12 +439,23 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
   for (std::size_t v = 0; v < n; ++v)
     fixed[v] = v < options.num_fixed || (!options.fixed.empty() && options.fixed[v]);
 
-  if (options.start == StartPosition::Harmonic) {
-    if (!options.fixed.empty())
-      throw InvalidInput(
-          "position_nodes: the harmonic start needs the fixed nodes to be 0..num_fixed-1 "
-          "(no mask)");
-    (void)harmonic_positions(mesh, options.num_fixed);
+  if (options.start != StartPosition::Keep) {
+    const Points harmonic = harmonic_start(mesh, fixed);
+    bool take = options.start == StartPosition::Harmonic;
+    if (!take) {
+      HexMesh trial{harmonic, {}};
+      const auto count = [](const Points& points, const HexMesh& m) {
+        std::size_t bad = 0;
+        for (const stc::Hex& h : m.complex.hexes)
+          for (double d : hex_corner_jacobians(points, h)) bad += d <= 0.0;
+        return bad;
+      };
+      take = count(harmonic, mesh) < count(mesh.points, mesh);
+    }
+    if (take) {
+      mesh.points = harmonic;
+      report.harmonic_start = true;
+    }
   }
 
   const QualitySummary before = summarize_quality(mesh, 0);
@@ -363,6 +466,8 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
       report.corners_inverted_before += d <= 0.0;
 
   Problem problem(mesh, fixed, options.theta);
+  problem.set_threads(options.threads > 0 ? static_cast<std::size_t>(options.threads)
+                                          : std::max(1u, std::thread::hardware_concurrency()));
   if (!mesh.complex.hexes.empty() && !(problem.volume() > 0.0))
     throw InvalidInput("position_nodes: the hexes enclose a total volume of " +
                        std::to_string(problem.volume()) +
@@ -375,7 +480,7 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
   auto [dmin, bad] = problem.min_determinant();
   double eps = dmin > 0.0 ? 1e-6 : 1.0;
   problem.set_epsilon(eps);
-  report.energy_before = problem.evaluate(nullptr);
+  const Eigen::VectorXd start_positions = x;
   report.stop = "no free node";
 
   if (problem.num_free() > 0 && !mesh.complex.hexes.empty()) {
@@ -394,8 +499,10 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
     std::size_t best_bad = bad;
     int stalled = 0;
     report.stop = "iteration limit";
+    double used_eps = eps;
     for (int outer = 0; outer < options.max_outer_iterations; ++outer) {
       problem.set_epsilon(eps);
+      used_eps = eps;
       problem.set_variables(x);
       const double start = problem.evaluate(nullptr);
       objective.reset(x, start);
@@ -431,9 +538,21 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
       }
       eps = std::sqrt(1e-12 + 0.04 * std::min(dmin, 0.0) * std::min(dmin, 0.0));
     }
-    report.epsilon = eps;
+    report.epsilon = used_eps;
+    // Both energies with the last round's eps, so that they compare.
+    problem.set_epsilon(report.epsilon);
+    problem.set_variables(start_positions);
+    report.energy_before = problem.evaluate(nullptr);
+    problem.set_variables(x);
+    report.energy_after = problem.evaluate(nullptr);
     problem.store(mesh);
+  } else {
+    report.epsilon = eps;
+    report.energy_before = report.energy_after = problem.evaluate(nullptr);
   }
+  if (!report.impossible.empty())
+    report.stop += "; " + std::to_string(report.impossible.size()) +
+                   " impossible corners left out (see impossible)";
 
   const QualitySummary after = summarize_quality(mesh, 0);
   report.inverted_after = after.inverted;
@@ -444,6 +563,7 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
       report.corners_inverted_after += d <= 0.0;
     if (after.per_hex[hx] <= 0.0) report.inverted.emplace_back(hx);
   }
+  report.untangled = report.inverted_after == 0 && report.corners_inverted_after == 0;
   report.certified = count_bezier_validity(mesh, options.certify_depth);
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return report;

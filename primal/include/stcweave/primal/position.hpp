@@ -27,7 +27,8 @@
 /// optimiser does not chase an impossible goal; the outer loop also stops when the count
 /// of inverted corners has not dropped for `stall_iterations` rounds.
 ///
-/// Deterministic: single-threaded, no randomness; the same input gives the same output.
+/// Deterministic: no randomness, and the energy is summed in a fixed order whatever the
+/// number of threads, so the same input gives the same output bit for bit.
 
 #include <cstddef>
 #include <string>
@@ -40,8 +41,11 @@ namespace stcweave::primal {
 
 /// Where the free nodes start from.
 enum class StartPosition {
-  Keep,     ///< their current coordinates (e.g. the harmonic placement of recover.hpp)
-  Harmonic  ///< the harmonic placement of the hex-edge graph (recover.hpp) first
+  Keep,      ///< their current coordinates (e.g. the harmonic placement of recover.hpp)
+  Harmonic,  ///< the harmonic placement of the hex-edge graph (every free node at the
+             ///< mean of its edge neighbours, fixed nodes as given), one sparse Cholesky
+  Auto       ///< the harmonic placement when it has fewer inverted corners than the
+             ///< current coordinates (e.g. nodes collapsed or scattered), else Keep
 };
 
 /// Options of `position_nodes`. Defaults are the settings measured to work in
@@ -65,11 +69,14 @@ struct PositionOptions {
   /// (relative) over a round.
   double energy_tolerance = 1e-5;
   /// Give up when the number of inverted corners has not dropped for this many rounds.
-  int stall_iterations = 10;
+  int stall_iterations = 3;
   /// L-BFGS memory.
   int memory = 6;
   /// Subdivision depth of the Bézier validity certification (0: no subdivision).
   int certify_depth = 4;
+  /// Threads evaluating the energy of meshes of 4096 hexes or more (0: one per hardware
+  /// thread). The result does not depend on it.
+  int threads = 0;
 };
 
 /// A hex corner that no position of the free nodes can make positive.
@@ -83,12 +90,15 @@ struct ImpossibleCorner {
 /// What `position_nodes` did.
 struct PositionReport {
   std::size_t free_nodes = 0;
+  bool harmonic_start = false;       ///< the harmonic placement was used as the start
   std::size_t outer_iterations = 0;  ///< rounds of (minimise, lower eps)
   std::size_t iterations = 0;        ///< L-BFGS iterations over all rounds
-  double energy_before = 0.0;        ///< energy at the start (eps of the first round)
-  double energy_after = 0.0;         ///< energy at the end (eps of the last round)
-  double epsilon = 0.0;              ///< last eps
-  std::size_t inverted_before = 0;   ///< hexes with scaled Jacobian <= 0 (9 points)
+  /// Energy of the starting positions and of the final ones, both with the last round's eps
+  /// (so the two are comparable; a tangled start gives a large `energy_before`).
+  double energy_before = 0.0;
+  double energy_after = 0.0;
+  double epsilon = 0.0;             ///< last eps
+  std::size_t inverted_before = 0;  ///< hexes with scaled Jacobian <= 0 (9 points)
   std::size_t inverted_after = 0;
   std::size_t corners_inverted_before = 0;  ///< corners with det <= 0
   std::size_t corners_inverted_after = 0;
@@ -99,8 +109,16 @@ struct PositionReport {
   ValidityCounts certified;
   std::vector<ImpossibleCorner> impossible;  ///< corners excluded as impossible
   std::vector<HexId> inverted;               ///< hexes still inverted (scaled Jacobian <= 0)
-  bool converged = false;                    ///< every corner positive and the energy settled
-  std::string stop;  ///< why it stopped: "converged", "stalled", "iteration limit", ...
+  /// The optimisation settled: every corner it could act on is positive and the energy
+  /// changed by less than `energy_tolerance` over the last round.
+  bool converged = false;
+  /// No hex inverted after positioning: every corner determinant > 0 and every scaled
+  /// Jacobian (9 points) > 0. False whenever `impossible` is not empty.
+  bool untangled = false;
+  /// Why it stopped: "converged", "stalled: N corners still inverted", "iteration limit",
+  /// "no free node"; followed by "; N impossible corners left out (see impossible)" when
+  /// some corners could not be fixed by any position.
+  std::string stop;
   double seconds = 0.0;
 };
 
@@ -116,7 +134,8 @@ struct PositionReport {
 /// \pre the hexes are positively oriented overall (their total signed volume is > 0).
 /// \throw InvalidInput when a hex names a node out of range, the fixed mask has the wrong
 ///        size, or the total volume is <= 0 (hexes mirrored).
-/// \throw SolverError when the harmonic start fails (StartPosition::Harmonic).
+/// \throw SolverError when the harmonic start fails (StartPosition::Harmonic or Auto): a
+///        free node not connected by hex edges to any fixed node.
 PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options);
 
 }  // namespace stcweave::primal

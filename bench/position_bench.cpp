@@ -1,0 +1,81 @@
+// Positioning time against mesh size (Google Benchmark; timings live here, never in tests).
+//
+// - BM_PositionScrambledBox/n: the n^3 structured box with every interior node moved by a
+//   seeded random vector of up to half its shortest edge (n = 10, 22, 46: about 1k, 10k and
+//   100k hexes). Target: 100k hexes in under 10 s on the 2-core development machine.
+// - BM_PositionBentBox/n: the n^3 box bent into a 270-degree C, interior from the harmonic
+//   map of the bent boundary (tangled: research/geometry.md §3.3), a harder case.
+//
+// Counters: hexes, inverted hexes before / after, min scaled Jacobian after, L-BFGS
+// iterations and rounds.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+
+#include "primal/position_helpers.hpp"
+#include "stcweave/primal/position.hpp"
+#include "support/shapes.hpp"
+
+namespace {
+
+using namespace stcweave;
+
+void report(benchmark::State& state, const primal::PositionReport& r, std::size_t hexes) {
+  state.counters["hexes"] = static_cast<double>(hexes);
+  state.counters["inverted_before"] = static_cast<double>(r.inverted_before);
+  state.counters["inverted_after"] = static_cast<double>(r.inverted_after);
+  state.counters["min_sj"] = r.min_scaled_jacobian_after;
+  state.counters["iterations"] = static_cast<double>(r.iterations);
+  state.counters["rounds"] = static_cast<double>(r.outer_iterations);
+}
+
+void BM_PositionScrambledBox(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  primal::HexMesh start = test::box_hexes(n, n, n);
+  primal::PositionOptions options;
+  options.fixed = test::boundary_nodes(start);
+  test::scramble(start, options.fixed, 0.5, 1);
+  primal::PositionReport r;
+  for (auto _ : state) {
+    state.PauseTiming();
+    primal::HexMesh mesh = start;
+    state.ResumeTiming();
+    r = primal::position_nodes(mesh, options);
+    benchmark::DoNotOptimize(mesh.points.data());
+  }
+  report(state, r, start.complex.hexes.size());
+}
+BENCHMARK(BM_PositionScrambledBox)
+    ->Arg(10)
+    ->Arg(22)
+    ->Arg(46)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+
+void BM_PositionBentBox(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  primal::HexMesh start = test::box_hexes(n, n, n);
+  test::bend(start, n, n, 0.2 * n, 1.5 * M_PI);
+  primal::PositionOptions options;
+  options.num_fixed = test::boundary_first(start);
+  options.start = primal::StartPosition::Harmonic;
+  primal::PositionReport r;
+  for (auto _ : state) {
+    state.PauseTiming();
+    primal::HexMesh mesh = start;
+    state.ResumeTiming();
+    r = primal::position_nodes(mesh, options);
+    benchmark::DoNotOptimize(mesh.points.data());
+  }
+  report(state, r, start.complex.hexes.size());
+}
+BENCHMARK(BM_PositionBentBox)
+    ->Arg(6)
+    ->Arg(12)
+    ->Arg(20)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,256 @@
+// Node positioning with a fixed boundary (`stcweave/primal/position.hpp`): scrambled and
+// collapsed boxes come back to the grid (min scaled Jacobian >= 0.99), a bent box whose
+// harmonic placement is tangled is untangled, fixed nodes never move, and topologies or
+// fixed corners that no position can fix are reported by element instead of iterated on.
+#include "stcweave/primal/position.hpp"
+
+#include <gtest/gtest.h>
+
+#include "primal/position_helpers.hpp"
+#include "stcweave/primal/recover.hpp"
+#include "stcweave/stc/errors.hpp"
+#include "support/shapes.hpp"
+
+namespace stcweave::primal {
+namespace {
+
+struct BoxCase {
+  int a, b, c;
+};
+
+class ScrambledBox : public ::testing::TestWithParam<BoxCase> {};
+
+TEST_P(ScrambledBox, ComesBackToTheGrid) {
+  const auto [a, b, c] = GetParam();
+  HexMesh mesh = test::box_hexes(a, b, c, 1.0, 1.5, 0.8);
+  PositionOptions options;
+  options.fixed = test::boundary_nodes(mesh);
+  test::scramble(mesh, options.fixed, 0.5, 42);
+  const PositionReport r = position_nodes(mesh, options);
+  EXPECT_EQ(r.inverted_after, 0u);
+  EXPECT_TRUE(r.inverted.empty());
+  EXPECT_TRUE(r.impossible.empty());
+  EXPECT_GE(r.min_scaled_jacobian_after, 0.99) << r.stop;
+  EXPECT_EQ(r.certified.valid, mesh.complex.hexes.size());
+  EXPECT_TRUE(r.converged) << r.stop;
+  EXPECT_EQ(r.stop, "converged");
+  EXPECT_GT(r.iterations, 0u);
+  EXPECT_GE(r.outer_iterations, 1u);
+  EXPECT_LE(r.energy_after, r.energy_before);
+  EXPECT_DOUBLE_EQ(summarize_quality(mesh).min_scaled_jacobian, r.min_scaled_jacobian_after);
+}
+
+TEST_P(ScrambledBox, CollapsedInteriorComesBackToTheGrid) {
+  const auto [a, b, c] = GetParam();
+  HexMesh mesh = test::box_hexes(a, b, c, 1.0, 1.5, 0.8);
+  PositionOptions options;
+  options.fixed = test::boundary_nodes(mesh);
+  test::collapse(mesh, options.fixed);
+  const PositionReport r = position_nodes(mesh, options);
+  EXPECT_GT(r.inverted_before, 0u);
+  EXPECT_EQ(r.inverted_after, 0u);
+  EXPECT_GE(r.min_scaled_jacobian_after, 0.99) << r.stop;
+}
+
+INSTANTIATE_TEST_SUITE_P(Boxes, ScrambledBox,
+                         ::testing::Values(BoxCase{3, 3, 3}, BoxCase{4, 3, 2}, BoxCase{5, 5, 5},
+                                           BoxCase{2, 2, 7}),
+                         [](const auto& info) {
+                           return std::to_string(info.param.a) + "x" +
+                                  std::to_string(info.param.b) + "x" + std::to_string(info.param.c);
+                         });
+
+TEST(Position, FixedNodesKeepTheirCoordinatesBitForBit) {
+  HexMesh mesh = test::box_hexes(4, 4, 4);
+  PositionOptions options;
+  options.fixed = test::boundary_nodes(mesh);
+  // some interior nodes fixed too, off the grid
+  mesh.points.row(31) += Eigen::RowVector3d(0.1, -0.05, 0.02);
+  options.fixed[31] = true;
+  test::scramble(mesh, options.fixed, 0.5, 7);
+  const Points before = mesh.points;
+  const PositionReport r = position_nodes(mesh, options);
+  for (std::size_t v = 0; v < options.fixed.size(); ++v)
+    if (options.fixed[v]) {
+      EXPECT_EQ(mesh.points(static_cast<Eigen::Index>(v), 0),
+                before(static_cast<Eigen::Index>(v), 0));
+      EXPECT_EQ(mesh.points(static_cast<Eigen::Index>(v), 1),
+                before(static_cast<Eigen::Index>(v), 1));
+      EXPECT_EQ(mesh.points(static_cast<Eigen::Index>(v), 2),
+                before(static_cast<Eigen::Index>(v), 2));
+    }
+  EXPECT_EQ(r.free_nodes, 26u);
+  EXPECT_EQ(r.inverted_after, 0u);
+}
+
+TEST(Position, IsDeterministic) {
+  HexMesh a = test::box_hexes(3, 4, 3);
+  PositionOptions options;
+  options.fixed = test::boundary_nodes(a);
+  test::scramble(a, options.fixed, 0.5, 3);
+  HexMesh b = a;
+  const PositionReport ra = position_nodes(a, options);
+  const PositionReport rb = position_nodes(b, options);
+  EXPECT_TRUE(a.points == b.points);
+  EXPECT_EQ(ra.iterations, rb.iterations);
+  EXPECT_EQ(ra.energy_after, rb.energy_after);
+}
+
+TEST(Position, ResultDoesNotDependOnTheThreadCount) {
+  HexMesh a = test::box_hexes(17, 16, 16);  // 4352 hexes: above the parallel threshold
+  PositionOptions options;
+  options.fixed = test::boundary_nodes(a);
+  test::scramble(a, options.fixed, 0.5, 5);
+  HexMesh b = a;
+  options.threads = 1;
+  const PositionReport ra = position_nodes(a, options);
+  options.threads = 3;
+  const PositionReport rb = position_nodes(b, options);
+  EXPECT_TRUE(a.points == b.points);
+  EXPECT_EQ(ra.iterations, rb.iterations);
+  EXPECT_EQ(ra.inverted_after, 0u);
+}
+
+TEST(Position, UntanglesABentBoxWhoseHarmonicPlacementIsTangled) {
+  // research/geometry.md §3.3: a 6^3 grid bent into a 270-degree C; the harmonic map of the
+  // bent boundary inverts many hexes; the untangler reaches 0 (measured min SJ there 0.78).
+  HexMesh mesh = test::box_hexes(6, 6, 6);
+  test::bend(mesh, 6.0, 6.0, 1.0, 1.5 * M_PI);
+  ASSERT_EQ(summarize_quality(mesh).inverted, 0u);
+  PositionOptions options;
+  options.num_fixed = test::boundary_first(mesh);
+  options.start = StartPosition::Harmonic;
+  const PositionReport r = position_nodes(mesh, options);
+  EXPECT_GT(r.inverted_before, 0u) << "the harmonic start should be tangled";
+  EXPECT_EQ(r.inverted_after, 0u) << r.stop;
+  EXPECT_GT(r.min_scaled_jacobian_after, 0.5);
+  EXPECT_EQ(r.certified.valid, mesh.complex.hexes.size());
+}
+
+TEST(Position, HarmonicStartWorksWithAMask) {
+  // The harmonic placement of a box's interior is the grid itself.
+  HexMesh mesh = test::box_hexes(4, 3, 3);
+  const Points grid = mesh.points;
+  PositionOptions options;
+  options.fixed = test::boundary_nodes(mesh);
+  test::collapse(mesh, options.fixed);
+  options.start = StartPosition::Harmonic;
+  options.max_outer_iterations = 1;
+  options.max_inner_iterations = 1;
+  const PositionReport r = position_nodes(mesh, options);
+  EXPECT_TRUE(r.harmonic_start);
+  EXPECT_EQ(r.inverted_before, 0u);
+  EXPECT_TRUE(mesh.points.isApprox(grid, 1e-9));
+}
+
+TEST(Position, AutoStartKeepsABetterCurrentPlacement) {
+  // bent box: the harmonic map is tangled, the bent grid is not, so Auto keeps the grid
+  HexMesh mesh = test::box_hexes(6, 6, 6);
+  test::bend(mesh, 6.0, 6.0, 1.0, 1.5 * M_PI);
+  PositionOptions options;
+  options.fixed = test::boundary_nodes(mesh);
+  options.start = StartPosition::Auto;
+  const PositionReport r = position_nodes(mesh, options);
+  EXPECT_FALSE(r.harmonic_start);
+  EXPECT_EQ(r.inverted_before, 0u);
+  EXPECT_EQ(r.inverted_after, 0u);
+}
+
+TEST(Position, MirroredMeshIsRejected) {
+  HexMesh mesh = test::box_hexes(3, 3, 3);
+  mesh.points.col(0) *= -1.0;
+  PositionOptions options;
+  options.fixed = test::boundary_nodes(mesh);
+  EXPECT_THROW((void)position_nodes(mesh, options), InvalidInput);
+}
+
+TEST(Position, WrongMaskSizeIsRejected) {
+  HexMesh mesh = test::box_hexes(2, 2, 2);
+  PositionOptions options;
+  options.fixed.assign(5, true);
+  EXPECT_THROW((void)position_nodes(mesh, options), InvalidInput);
+}
+
+TEST(Position, NoFreeNodeChangesNothing) {
+  HexMesh mesh = test::box_hexes(2, 1, 1);
+  const Points before = mesh.points;
+  PositionOptions options;
+  options.num_fixed = static_cast<std::size_t>(mesh.points.rows());
+  const PositionReport r = position_nodes(mesh, options);
+  EXPECT_TRUE(mesh.points == before);
+  EXPECT_EQ(r.free_nodes, 0u);
+  EXPECT_EQ(r.iterations, 0u);
+  EXPECT_EQ(r.certified.valid, 2u);
+}
+
+TEST(Position, FixedInvertedCornerIsReportedByElementAndTheRestIsUntangled) {
+  HexMesh mesh = test::box_hexes(3, 3, 3);
+  PositionOptions options;
+  options.fixed = test::boundary_nodes(mesh);
+  // Node 0 is a corner of the box: its three edge neighbours are boundary nodes, so the
+  // corner of hex 0 there has four fixed nodes. Pushing node 0 inside inverts it for good.
+  mesh.points.row(0) << 0.9, 0.9, 0.9;
+  test::scramble(mesh, options.fixed, 0.5, 11);
+  const PositionReport r = position_nodes(mesh, options);
+  ASSERT_FALSE(r.impossible.empty());
+  EXPECT_EQ(r.impossible.front().hex, HexId(0));
+  EXPECT_EQ(r.impossible.front().corner, 0);
+  EXPECT_FALSE(r.impossible.front().other.is_valid());
+  EXPECT_NE(r.impossible.front().reason.find("h0"), std::string::npos);
+  for (const ImpossibleCorner& c : r.impossible) EXPECT_EQ(c.hex, HexId(0));
+  ASSERT_EQ(r.inverted.size(), 1u);
+  EXPECT_EQ(r.inverted[0], HexId(0));
+  EXPECT_EQ(r.inverted_after, 1u);
+  EXPECT_NE(r.stop.find("impossible"), std::string::npos) << r.stop;
+  EXPECT_FALSE(r.untangled);
+}
+
+TEST(Position, HexesSharingTwoFacesAreReportedAsImpossible) {
+  // Hex 0 is the unit cube; hex 1 shares its faces x = 0 (0,3,7,4) and y = 0 (0,1,5,4),
+  // hence the edge 0-4 and the corners at nodes 0 and 4 with the same three edges, in the
+  // opposite orientation: one of the two hexes is inverted there whatever the positions.
+  HexMesh mesh;
+  mesh.points.resize(10, 3);
+  mesh.points << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1, 0.3, 0.3,
+      0, 0.3, 0.3, 1;
+  auto hex = [](std::array<int, 8> v) {
+    stc::Hex h{};
+    for (std::size_t i = 0; i < 8; ++i) h[i] = NodeId(v[i]);
+    return h;
+  };
+  mesh.complex.hexes = {hex({0, 1, 2, 3, 4, 5, 6, 7}), hex({0, 3, 8, 1, 4, 7, 9, 5})};
+  mesh.complex.num_nodes = 10;
+  // nodes 0 and 4 (the ends of the shared edge) move, so the corners there are not fixed
+  const std::vector<bool> fixed = {false, true, true, true, false, true, true, true, false, false};
+  const std::vector<ImpossibleCorner> corners = impossible_corners(mesh, fixed);
+  ASSERT_FALSE(corners.empty());
+  bool pair_named = false;
+  for (const ImpossibleCorner& c : corners)
+    if (c.hex == HexId(0) && c.other == HexId(1)) pair_named = true;
+  EXPECT_TRUE(pair_named);
+  PositionOptions options;
+  options.fixed = fixed;
+  const PositionReport r = position_nodes(mesh, options);
+  EXPECT_FALSE(r.impossible.empty());
+  EXPECT_FALSE(r.untangled);
+  EXPECT_LE(r.outer_iterations, static_cast<std::size_t>(options.max_outer_iterations));
+  EXPECT_NE(r.stop.find("impossible"), std::string::npos) << r.stop;
+}
+
+TEST(Position, StallRuleStopsEarly) {
+  // With one round of one iteration nothing can converge: the report says so.
+  HexMesh mesh = test::box_hexes(4, 4, 4);
+  PositionOptions options;
+  options.fixed = test::boundary_nodes(mesh);
+  test::collapse(mesh, options.fixed);
+  options.max_outer_iterations = 1;
+  options.max_inner_iterations = 1;
+  const PositionReport r = position_nodes(mesh, options);
+  EXPECT_EQ(r.outer_iterations, 1u);
+  EXPECT_LE(r.iterations, 1u);
+  EXPECT_FALSE(r.converged);
+  EXPECT_EQ(r.stop, "iteration limit");
+}
+
+}  // namespace
+}  // namespace stcweave::primal
