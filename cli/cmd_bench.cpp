@@ -56,7 +56,7 @@ struct BenchArgs {
   std::string manifest;
   std::size_t jobs = 1;
   std::string out = "bench-results";
-  std::string rules = "reliable";
+  std::string rules = "extended";
   double timeout = 180.0;
   std::size_t memory_mb = 4096;
   bool quiet = false;
