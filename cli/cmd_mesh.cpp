@@ -58,6 +58,7 @@ nlohmann::json position_json(const primal::PositionReport& p) {
           {"corners_inverted_after", p.corners_inverted_after},
           {"min_scaled_jacobian_before", p.min_scaled_jacobian_before},
           {"min_scaled_jacobian_after", p.min_scaled_jacobian_after},
+          {"mean_scaled_jacobian_before", p.mean_scaled_jacobian_before},
           {"mean_scaled_jacobian_after", p.mean_scaled_jacobian_after},
           {"certified_valid", p.certified.valid},
           {"certified_invalid", p.certified.invalid},
@@ -233,7 +234,7 @@ int run_mesh(const MeshArgs& a) {
     std::cout << "quality    min scaled Jacobian " << r.quality.min_scaled_jacobian << ", mean "
               << r.quality.mean_scaled_jacobian << ", inverted " << r.quality.inverted;
     if (options.untangle)
-      std::cout << " (untangled: " << r.position.inverted_before << " inverted before, "
+      std::cout << " (after untangling; " << r.position.inverted_before << " before; "
                 << r.position.stop << ")\n";
     else
       std::cout << " (harmonic placement, not untangled)\n";

@@ -461,6 +461,7 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
   const QualitySummary before = summarize_quality(mesh, 0);
   report.inverted_before = before.inverted;
   report.min_scaled_jacobian_before = before.min_scaled_jacobian;
+  report.mean_scaled_jacobian_before = before.mean_scaled_jacobian;
   for (const stc::Hex& h : mesh.complex.hexes)
     for (double d : hex_corner_jacobians(mesh.points, h))
       report.corners_inverted_before += d <= 0.0;
@@ -551,8 +552,7 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
     report.energy_before = report.energy_after = problem.evaluate(nullptr);
   }
   if (!report.impossible.empty())
-    report.stop += "; " + std::to_string(report.impossible.size()) +
-                   " impossible corners left out (see impossible)";
+    report.stop += "; " + std::to_string(report.impossible.size()) + " impossible corners left out";
 
   const QualitySummary after = summarize_quality(mesh, 0);
   report.inverted_after = after.inverted;

@@ -104,6 +104,7 @@ struct PositionReport {
   std::size_t corners_inverted_after = 0;
   double min_scaled_jacobian_before = 0.0;
   double min_scaled_jacobian_after = 0.0;
+  double mean_scaled_jacobian_before = 0.0;
   double mean_scaled_jacobian_after = 0.0;
   /// Bézier test after positioning: hexes certified valid / invalid / undecided.
   ValidityCounts certified;
@@ -116,7 +117,7 @@ struct PositionReport {
   /// Jacobian (9 points) > 0. False whenever `impossible` is not empty.
   bool untangled = false;
   /// Why it stopped: "converged", "stalled: N corners still inverted", "iteration limit",
-  /// "no free node"; followed by "; N impossible corners left out (see impossible)" when
+  /// "no free node"; followed by "; N impossible corners left out" (listed in `impossible`) when
   /// some corners could not be fixed by any position.
   std::string stop;
   double seconds = 0.0;
