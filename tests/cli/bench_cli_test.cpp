@@ -106,7 +106,7 @@ TEST_F(BenchCli, EveryInputIsARowFailuresIncluded) {
   const std::string csv = slurp(dir_ / "out/results.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);
   const std::string md = slurp(dir_ / "out/results.md");
-  EXPECT_THAT(md, HasSubstr("bar_1x1x3.obj | reliable | 14 |"));
+  EXPECT_THAT(md, HasSubstr("bar_1x1x3.obj | extended | 14 |"));
 }
 
 TEST_F(BenchCli, RuleSetsSideBySideAndGeneratedShapesWithTheirReference) {
