@@ -578,7 +578,14 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
     if (after.per_hex[hx] <= 0.0) report.inverted.emplace_back(hx);
   }
   report.untangled = report.inverted_after == 0 && report.corners_inverted_after == 0;
-  report.certified = count_bezier_validity(mesh, options.certify_depth);
+  report.validity.reserve(mesh.complex.hexes.size());
+  for (const stc::Hex& h : mesh.complex.hexes) {
+    const Validity v = hex_bezier_validity(mesh.points, h, options.certify_depth);
+    report.validity.push_back(v);
+    report.certified.valid += v == Validity::Valid;
+    report.certified.invalid += v == Validity::Invalid;
+    report.certified.uncertain += v == Validity::Uncertain;
+  }
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return report;
 }
