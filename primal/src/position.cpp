@@ -510,7 +510,9 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
     param.linesearch = LBFGSpp::LBFGS_LINESEARCH_BACKTRACKING_WOLFE;
     LBFGSpp::LBFGSSolver<double, LBFGSpp::LineSearchBacktracking> solver(param);
     Objective objective(problem);
-    double previous = report.energy_before;
+    // No energy before the first round: "settled" needs two rounds (their eps may differ,
+    // so a round that only lowered eps is not mistaken for convergence).
+    double previous = std::numeric_limits<double>::infinity();
     std::size_t best_bad = bad;
     int stalled = 0;
     report.stop = "iteration limit";
