@@ -46,6 +46,12 @@ nlohmann::json position_json(const primal::PositionReport& p) {
     impossible.push_back({{"hex", c.hex.str()}, {"corner", c.corner}, {"reason", c.reason}});
   nlohmann::json inverted = nlohmann::json::array();
   for (const HexId h : p.inverted) inverted.push_back(h.str());
+  nlohmann::json uncertified = nlohmann::json::array();
+  for (std::size_t h = 0; h < p.validity.size(); ++h)
+    if (p.validity[h] != primal::Validity::Valid)
+      uncertified.push_back(
+          {{"hex", HexId(h).str()},
+           {"bezier", p.validity[h] == primal::Validity::Invalid ? "invalid" : "undecided"}});
   return {{"free_nodes", p.free_nodes},
           {"rounds", p.outer_iterations},
           {"iterations", p.iterations},
@@ -63,6 +69,7 @@ nlohmann::json position_json(const primal::PositionReport& p) {
           {"certified_valid", p.certified.valid},
           {"certified_invalid", p.certified.invalid},
           {"certified_uncertain", p.certified.uncertain},
+          {"not_certified_hexes", uncertified},
           {"converged", p.converged},
           {"stop", p.stop},
           {"impossible_corners", impossible},

@@ -200,6 +200,10 @@ TEST(Position, FixedInvertedCornerIsReportedByElementAndTheRestIsUntangled) {
   for (const ImpossibleCorner& c : r.impossible) EXPECT_EQ(c.hex, HexId(0));
   ASSERT_EQ(r.inverted.size(), 1u);
   EXPECT_EQ(r.inverted[0], HexId(0));
+  ASSERT_EQ(r.validity.size(), mesh.complex.hexes.size());
+  EXPECT_EQ(r.validity[0], Validity::Invalid);
+  EXPECT_EQ(r.certified.invalid, 1u);
+  EXPECT_EQ(r.certified.valid, mesh.complex.hexes.size() - 1);
   EXPECT_EQ(r.inverted_after, 1u);
   EXPECT_NE(r.stop.find("impossible"), std::string::npos) << r.stop;
   EXPECT_FALSE(r.untangled);

@@ -108,6 +108,8 @@ struct PositionReport {
   double mean_scaled_jacobian_after = 0.0;
   /// Bézier test after positioning: hexes certified valid / invalid / undecided.
   ValidityCounts certified;
+  /// The Bézier test of every hex after positioning, indexed by hex.
+  std::vector<Validity> validity;
   std::vector<ImpossibleCorner> impossible;  ///< corners excluded as impossible
   std::vector<HexId> inverted;               ///< hexes still inverted (scaled Jacobian <= 0)
   /// The optimisation settled: every corner it could act on is positive and the energy
