@@ -35,16 +35,16 @@ echo "update_results.sh: wrote docs/results.md"
 # docs/results.md), and the scaling lines of the generated sweep.
 awk '
   FNR == 1 { file++ }
-  file == 1 && /^# stcweave bench: bench\/shared.manifest/ { part = "summary"; next }
-  file == 1 && /^## Side by side/ { part = "side"; print "#### Shared corpus, side by side (woven inputs)\n"; next }
+  file == 1 && /^# stcweave bench: bench\/shared.manifest/ { part = "summary"; print "#### Shared corpus (bench/shared.manifest)"; next }
+  file == 1 && /^## Side by side/ { part = "side"; print "#### Shared corpus, side by side (woven inputs)"; next }
   file == 1 && /^## / { part = "" }
-  file == 1 && /^### Scaling/ { part = "scaling"; print "#### Scaling on generated boxes\n"; next }
+  file == 1 && /^### Scaling/ { part = "scaling"; print "#### Scaling on generated boxes"; next }
   file == 1 && /^### / && !/^### Scaling/ { if (part == "scaling") part = "" }
   part == "summary" { print; next }
   part == "side" && (/^\| input/ || /^\|---/ || (/^\| / && !/rejected: .*\| rejected: /)) { print; next }
   part == "side" && /^$/ { print; next }
   part == "scaling" && (/^- / || /^Least/ || /^$/) { print; next }
-' docs/results.md > "$out/readme-results.md"
+' docs/results.md | cat -s > "$out/readme-results.md"
 awk -v section="$out/readme-results.md" '
   /<!-- results:begin -->/ { print; while ((getline line < section) > 0) print line; skip = 1; next }
   /<!-- results:end -->/ { skip = 0 }
