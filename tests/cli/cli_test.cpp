@@ -139,3 +139,73 @@ TEST_F(Cli, UnknownRuleSetExitsTwo) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(Cli, GenerateThenQualityOfAStructuredBox) {
+  const fs::path hexes = dir_ / "box.vtk";
+  ASSERT_EQ(run("generate box 2 3 4 --hexes -q -o " + hexes.string()).code, 0);
+  const CliRun q = run("quality " + hexes.string() + " --json");
+  ASSERT_EQ(q.code, 0) << q.out;
+  const auto j = nlohmann::json::parse(q.out);
+  EXPECT_EQ(j.at("hexes").get<int>(), 24) << q.out;
+  EXPECT_NEAR(j.at("scaled_jacobian").at("min").get<double>(), 1.0, 1e-12) << q.out;
+  EXPECT_EQ(run("quality " + (dir_ / "missing.vtk").string()).code, 2);
+  EXPECT_EQ(run("quality").code, 1);
+}
+
+TEST_F(Cli, GeneratedSurfaceMeshesToItsBox) {
+  const fs::path surface = dir_ / "box.obj", out = dir_ / "out.vtk", report = dir_ / "r.json";
+  ASSERT_EQ(run("generate box 3 2 2 -q -o " + surface.string()).code, 0);
+  const CliRun r =
+      run("mesh " + surface.string() + " -o " + out.string() + " -q --report " + report.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(slurp(report));
+  EXPECT_EQ(j.at("hexes").get<int>(), 12);
+  EXPECT_EQ(j.at("rules").get<std::string>(), "extended");
+  EXPECT_EQ(j.at("quality").at("inverted").get<int>(), 0);
+}
+
+TEST_F(Cli, WeavingOptionsAreCheckedAndRecorded) {
+  const fs::path out = dir_ / "l.vtk", report = dir_ / "r.json";
+  const CliRun bad =
+      run("mesh " + data("lblock.obj") + " -o " + out.string() + " --sharp 200 --little-sharp 170");
+  EXPECT_EQ(bad.code, 2) << bad.out;
+  EXPECT_NE(bad.out.find("out of order"), std::string::npos) << bad.out;
+  EXPECT_FALSE(fs::exists(out));
+  const CliRun ok = run("mesh " + data("lblock.obj") + " -o " + out.string() +
+                        " -q --no-depth-filter --flat 185 --report " + report.string());
+  ASSERT_EQ(ok.code, 0) << ok.out;
+  const auto j = nlohmann::json::parse(slurp(report));
+  EXPECT_FALSE(j.at("weave_options").at("depth_filter").get<bool>());
+  EXPECT_EQ(j.at("weave_options").at("flat").get<double>(), 185.0);
+  EXPECT_EQ(j.at("hexes").get<int>(), 10);
+}
+
+TEST_F(Cli, TraceNamesTheDecidingFilterAndSurvivesAFailedWeave) {
+  const fs::path out = dir_ / "l.vtk", trace = dir_ / "t.jsonl";
+  ASSERT_EQ(
+      run("mesh " + data("lblock.obj") + " -o " + out.string() + " -q --trace " + trace.string())
+          .code,
+      0);
+  std::istringstream lines(slurp(trace));
+  std::string line;
+  std::size_t selections = 0;
+  while (std::getline(lines, line)) {
+    const auto e = nlohmann::json::parse(line);
+    if (e.at("event") != "selection") continue;
+    ++selections;
+    EXPECT_FALSE(e.at("decided_by").get<std::string>().empty()) << line;
+    EXPECT_FALSE(e.at("filters").empty()) << line;
+  }
+  EXPECT_GT(selections, 0u);
+  // A rule budget too small to finish: exit 3, no mesh, but the trace of what was done.
+  fs::remove(out);
+  const CliRun r = run("mesh " + data("lblock.obj") + " -o " + out.string() +
+                       " --max-rules 3 --trace " + trace.string());
+  EXPECT_EQ(r.code, 3) << r.out;
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_NE(slurp(trace).find("\"event\":\"rule\""), std::string::npos);
+}
+
+}  // namespace
