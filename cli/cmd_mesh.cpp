@@ -33,6 +33,7 @@ struct MeshArgs {
   bool progress = false;
   // Positioning (untangling) of the interior nodes.
   bool no_untangle = false;
+  std::string start = "harmonic";
   int position_rounds = 100;
   int position_iterations = 3000;
   double position_theta = 0.5;
@@ -148,6 +149,9 @@ int run_mesh(const MeshArgs& a) {
     };
   options.keep_invalid = a.keep_invalid;
   options.untangle = !a.no_untangle;
+  if (a.start != "layers" && a.start != "harmonic")
+    throw InvalidInput("--start must be layers or harmonic, not '" + a.start + "'");
+  options.layer_start = a.start == "layers";
   options.position.max_outer_iterations = a.position_rounds;
   options.position.max_inner_iterations = a.position_iterations;
   options.position.theta = a.position_theta;
@@ -282,6 +286,10 @@ Action add_mesh_command(CLI::App& app) {
                 "write the mesh even when the woven complex is invalid (exit code 3 all the same)");
   sub->add_flag("--no-untangle", args->no_untangle,
                 "keep the harmonic placement of the interior nodes (no untangling)");
+  sub->add_option("--start", args->start,
+                  "untangling starts from: harmonic, or layers (the weave's layer placement, or "
+                  "the harmonic one when that has fewer inverted corners)")
+      ->capture_default_str();
   sub->add_option("--position-rounds", args->position_rounds,
                   "untangling: most rounds of (minimise, lower epsilon)")
       ->capture_default_str()

@@ -74,6 +74,8 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
     stage("position");
     PositionOptions position = options.position;
     position.num_fixed = r.woven.num_input_nodes;
+    if (options.layer_start && layer_positions(r.mesh, r.woven) > 0)
+      position.start = StartPosition::Auto;
     r.position = position_nodes(r.mesh, position);
     r.seconds.position = clock.lap();
   }

@@ -570,7 +570,18 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
   if (!report.impossible.empty())
     report.stop += "; " + std::to_string(report.impossible.size()) + " impossible corners left out";
 
-  const QualitySummary after = summarize_quality(mesh, 0);
+  QualitySummary after = summarize_quality(mesh, 0);
+  if (after.inverted > before.inverted && report.free_nodes > 0) {
+    // The energy counts corners; a user counts hexes. Never hand back more inverted hexes
+    // than we were given: keep the start instead.
+    problem.set_variables(start_positions);
+    problem.store(mesh);
+    report.stop += "; kept the start (" + std::to_string(after.inverted) +
+                   " inverted hexes after optimisation against " + std::to_string(before.inverted) +
+                   " before)";
+    report.kept_start = true;
+    after = summarize_quality(mesh, 0);
+  }
   report.inverted_after = after.inverted;
   report.min_scaled_jacobian_after = after.min_scaled_jacobian;
   report.mean_scaled_jacobian_after = after.mean_scaled_jacobian;

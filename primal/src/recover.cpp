@@ -99,4 +99,46 @@ HexMesh recover_hex_mesh(const Points& input_points, const weave::WeaveResult& w
   return mesh;
 }
 
+std::size_t layer_positions(HexMesh& mesh, const weave::WeaveResult& woven) {
+  const std::size_t fixed = woven.num_input_nodes;
+  const std::size_t n = woven.complex.num_nodes;
+  if (static_cast<std::size_t>(mesh.points.rows()) != n ||
+      woven.hex_rule.size() != woven.complex.hexes.size())
+    throw InvalidInput("layer_positions: the mesh is not the recovered mesh of this weave");
+  Points sum = Points::Zero(static_cast<Eigen::Index>(n), 3);
+  std::vector<int> count(n, 0);
+  const auto known = [&](NodeId m) { return m.index() < fixed || count[m.index()] > 0; };
+  const auto at = [&](NodeId m) -> Eigen::RowVector3d {
+    if (m.index() < fixed) return mesh.points.row(static_cast<Eigen::Index>(m.index()));
+    return sum.row(static_cast<Eigen::Index>(m.index())) / count[m.index()];
+  };
+  const auto add = [&](NodeId m, const Eigen::RowVector3d& p) {
+    if (m.index() < fixed) return;
+    sum.row(static_cast<Eigen::Index>(m.index())) += p;
+    ++count[m.index()];
+  };
+  for (std::size_t h = 0; h < woven.complex.hexes.size(); ++h) {
+    const stc::Hex& x = woven.complex.hexes[h];
+    const std::string& rule = woven.hex_rule[h];
+    if (rule == "cross" || rule == "cross-relaxed") {
+      // {v, b, xab, a, c, xbc, w, xca}: w completes the corner at v.
+      if (known(x[0]) && known(x[1]) && known(x[2]) && known(x[3]) && known(x[4]) && known(x[5]) &&
+          known(x[7]))
+        add(x[6], at(x[2]) + at(x[5]) + at(x[7]) - at(x[1]) - at(x[3]) - at(x[4]) + at(x[0]));
+    } else if (rule == "blind-chord") {
+      // {s, p3, p2, t, q2, n5, n6, q3}: n5 above p3, n6 above p2 (q2 is above s, q3 above t).
+      if (known(x[0]) && known(x[1]) && known(x[4])) add(x[5], at(x[1]) + at(x[4]) - at(x[0]));
+      if (known(x[2]) && known(x[3]) && known(x[7])) add(x[6], at(x[2]) + at(x[7]) - at(x[3]));
+    }
+  }
+  std::size_t placed = 0;
+  for (std::size_t m = fixed; m < n; ++m) {
+    if (count[m] == 0) continue;
+    mesh.points.row(static_cast<Eigen::Index>(m)) =
+        sum.row(static_cast<Eigen::Index>(m)) / count[m];
+    ++placed;
+  }
+  return placed;
+}
+
 }  // namespace stcweave::primal

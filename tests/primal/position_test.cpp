@@ -258,3 +258,47 @@ TEST(Position, StallRuleStopsEarly) {
 
 }  // namespace
 }  // namespace stcweave::primal
+
+namespace stcweave::primal {
+namespace {
+
+TEST(LayerPositions, PutAWovenBoxOnItsGrid) {
+  // Every cross completes a parallelepiped, so the layers of a woven box land exactly on the
+  // grid (graded spacing included): every hex is a box, scaled Jacobian 1.
+  const SurfaceMesh s = test::box_surface(3, 4, 2, 1.0, 0.5, 2.0);
+  const weave::WeaveResult woven = weave::weave(s.surface);
+  HexMesh mesh = recover_hex_mesh(s.points, woven);
+  mesh.points.bottomRows(mesh.points.rows() - s.points.rows()).setZero();
+  const std::size_t interior = woven.complex.num_nodes - woven.num_input_nodes;
+  EXPECT_EQ(layer_positions(mesh, woven), interior);
+  const QualitySummary q = summarize_quality(mesh);
+  EXPECT_NEAR(q.min_scaled_jacobian, 1.0, 1e-9);
+}
+
+TEST(LayerPositions, RefuseAMeshOfAnotherWeave) {
+  const SurfaceMesh s = test::box_surface(2, 2, 2);
+  const weave::WeaveResult woven = weave::weave(s.surface);
+  HexMesh other = test::box_hexes(3, 3, 3);
+  EXPECT_THROW(layer_positions(other, woven), InvalidInput);
+}
+
+TEST(Position, NeverReturnsMoreInvertedHexesThanItWasGiven) {
+  // The guard at the end of position_nodes: whatever one short round of the optimiser does
+  // to a badly scrambled box, at most the hexes inverted before are inverted after.
+  for (const std::uint32_t seed : {1U, 2U, 3U, 4U}) {
+    HexMesh mesh = test::box_hexes(4, 4, 4);
+    const std::vector<bool> fixed = test::boundary_nodes(mesh);
+    test::scramble(mesh, fixed, 2.0, seed);
+    const QualitySummary before = summarize_quality(mesh);
+    PositionOptions o;
+    o.fixed = fixed;
+    o.max_outer_iterations = 1;
+    o.max_inner_iterations = 2;
+    const PositionReport r = position_nodes(mesh, o);
+    EXPECT_LE(r.inverted_after, before.inverted) << "seed " << seed;
+    EXPECT_EQ(summarize_quality(mesh).inverted, r.inverted_after);
+  }
+}
+
+}  // namespace
+}  // namespace stcweave::primal

@@ -123,6 +123,8 @@ struct PositionReport {
   /// some corners could not be fixed by any position.
   std::string stop;
   double seconds = 0.0;
+  /// The optimised positions had more inverted hexes than the start: the start was kept.
+  bool kept_start = false;
 };
 
 /// The corners of `mesh` that cannot become positive whatever the free nodes do: corners

@@ -30,4 +30,14 @@ HarmonicReport harmonic_positions(HexMesh& mesh, std::size_t num_fixed);
 HexMesh recover_hex_mesh(const Points& input_points, const weave::WeaveResult& woven,
                          HarmonicReport* report = nullptr);
 
+/// Layer placement: moves the interior nodes of `mesh` (a recovered weave, same numbering)
+/// to where the weave's layers put them, advancing from the boundary in the order the hexes
+/// were made. A cross's new node completes the parallelepiped of its corner (w = the three
+/// far face corners - the three edge neighbours + the corner node), a blind chord's two new
+/// nodes are translated copies of the strip face's far nodes across the common edge;
+/// parallel merging makes no node. A node reached several ways (nodes merged by seams) gets
+/// the mean of its estimates; nodes no estimate reaches keep their position.
+/// \return the number of interior nodes placed.
+std::size_t layer_positions(HexMesh& mesh, const weave::WeaveResult& woven);
+
 }  // namespace stcweave::primal
