@@ -18,13 +18,14 @@ HarmonicReport harmonic_positions(HexMesh& mesh, std::size_t num_fixed) {
   // Unique hex edges (as node pairs), each contributing to the graph Laplacian once.
   std::vector<std::pair<std::int32_t, std::int32_t>> edges;
   edges.reserve(mesh.complex.hexes.size() * 12);
-  for (const stc::Hex& h : mesh.complex.hexes)
+  for (const stc::Hex& h : mesh.complex.hexes) {
     for (const auto& e : stc::kHexEdges) {
       std::int32_t a = h[static_cast<std::size_t>(e[0])].value();
       std::int32_t b = h[static_cast<std::size_t>(e[1])].value();
       if (a > b) std::swap(a, b);
       edges.emplace_back(a, b);
     }
+  }
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
 
@@ -51,9 +52,10 @@ HarmonicReport harmonic_positions(HexMesh& mesh, std::size_t num_fixed) {
   }
   Eigen::MatrixX3d guess(static_cast<Eigen::Index>(free), 3);
   for (std::size_t i = 0; i < free; ++i) {
-    if (degree[i] == 0.0)
+    if (degree[i] == 0.0) {
       throw SolverError("harmonic placement: interior node n" + std::to_string(num_fixed + i) +
                         " is on no hex edge");
+    }
     triplets.emplace_back(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i), degree[i]);
   }
   // Start from the centroid of the fixed nodes: any start converges, this one is neutral.
@@ -71,10 +73,11 @@ HarmonicReport harmonic_positions(HexMesh& mesh, std::size_t num_fixed) {
     throw SolverError("harmonic placement: cannot set up the solver");
   for (int c = 0; c < 3; ++c) {
     const Eigen::VectorXd x = cg.solveWithGuess(rhs.col(c), guess.col(c));
-    if (cg.info() != Eigen::Success)
+    if (cg.info() != Eigen::Success) {
       throw SolverError("harmonic placement did not converge (" + std::to_string(cg.iterations()) +
                         " iterations, residual " + std::to_string(cg.error()) +
                         "): some interior nodes may be cut off from the boundary");
+    }
     mesh.points.block(static_cast<Eigen::Index>(num_fixed), c, static_cast<Eigen::Index>(free), 1) =
         x;
     report.iterations =
@@ -86,10 +89,11 @@ HarmonicReport harmonic_positions(HexMesh& mesh, std::size_t num_fixed) {
 
 HexMesh recover_hex_mesh(const Points& input_points, const weave::WeaveResult& woven,
                          HarmonicReport* report) {
-  if (static_cast<std::size_t>(input_points.rows()) != woven.num_input_nodes)
+  if (static_cast<std::size_t>(input_points.rows()) != woven.num_input_nodes) {
     throw InvalidInput("recover_hex_mesh: " + std::to_string(input_points.rows()) +
                        " input points for a weave of " + std::to_string(woven.num_input_nodes) +
                        " input nodes");
+  }
   HexMesh mesh;
   mesh.complex = woven.complex;
   mesh.points.resize(static_cast<Eigen::Index>(woven.complex.num_nodes), 3);

@@ -56,12 +56,13 @@ EdgeClass classify_edge(double angle, const ExtendedParameters& p) {
 void check_parameters(const ExtendedParameters& p) {
   const bool ordered = p.sharp > 0.0 && p.sharp <= p.little_sharp && p.little_sharp <= p.flat &&
                        p.flat <= p.little_sharp_nonconvex && p.little_sharp_nonconvex < 360.0;
-  if (!ordered)
+  if (!ordered) {
     throw InvalidInput("edge class thresholds out of order: need 0 < sharp (" +
                        std::to_string(p.sharp) + ") <= little_sharp (" +
                        std::to_string(p.little_sharp) + ") <= flat (" + std::to_string(p.flat) +
                        ") <= little_sharp_nonconvex (" + std::to_string(p.little_sharp_nonconvex) +
                        ") < 360 degrees");
+  }
 }
 
 std::string to_string(EdgeClass c) {
@@ -119,10 +120,11 @@ class Weaver {
       : front_(surface), options_(options) {
     if (options.rules == RuleSet::Extended) check_parameters(options.extended);
     if (!side_angles.empty()) {
-      if (side_angles.size() != surface.quads.size())
+      if (side_angles.size() != surface.quads.size()) {
         throw InvalidInput("weave: " + std::to_string(side_angles.size()) +
                            " side angle entries for " + std::to_string(surface.quads.size()) +
                            " quads");
+      }
       // Input quad q is front face q: the front adds them in order into an empty slot list.
       for (std::size_t q = 0; q < side_angles.size(); ++q) {
         std::array<float, 4> angle{};
@@ -400,17 +402,19 @@ void Weaver::after_rule(const char* rule, NodeId node, std::vector<std::string> 
     record(std::move(e));
   }
   if (options_.check) {
-    if (auto err = front_.check_invariants())
+    if (auto err = front_.check_invariants()) {
       throw InternalError("weave: front invariant broken after " + std::string(rule) + " at " +
                           node.str() + " (rule " + std::to_string(rules_applied_) + "): " + *err);
+    }
   }
   if (options_.progress && options_.progress_every > 0 &&
       rules_applied_ % options_.progress_every == 0)
     options_.progress(WeaveProgress{front_.num_faces(), hexes_.size(), stats_.shrinks});
-  if (rules_applied_ > max_rules_)
+  if (rules_applied_ > max_rules_) {
     throw WeaveError("weave: gave up after " + std::to_string(max_rules_) +
                      " rule applications with " + std::to_string(front_.num_faces()) +
                      " front faces left (raise the limit with max_rules if the input is large)");
+  }
 }
 
 std::size_t Weaver::common_nodes(HexId a, HexId b, NodeId gone, NodeId keep) const {
@@ -459,11 +463,12 @@ std::optional<std::string> Weaver::merge_conflict(NodeId x, NodeId y, NodeId kee
       std::size_t hits = 0;
       for (NodeId n : stc::hex_face(hexes_[h.index()], lf)) {
         const NodeId m = image(n);
-        for (NodeId o : hexes_[other.index()])
+        for (NodeId o : hexes_[other.index()]) {
           if (image(o) == m) {
             ++hits;
             break;
           }
+        }
       }
       if (hits == 4) return lf;
     }
@@ -474,17 +479,20 @@ std::optional<std::string> Weaver::merge_conflict(NodeId x, NodeId y, NodeId kee
       const std::size_t common = common_nodes(h1, h2, gone, keep);
       if (common < 4) continue;
       const std::string pair = h1.str() + " and " + h2.str();
-      if (common > 4)
+      if (common > 4) {
         return "merging " + x.str() + " and " + y.str() + " would make " + pair +
                " share more than one face";
+      }
       const int f1 = face_within(h1, h2), f2 = face_within(h2, h1);
-      if (f1 < 0 || f2 < 0)
+      if (f1 < 0 || f2 < 0) {
         return "merging " + x.str() + " and " + y.str() + " would make " + pair +
                " share four nodes that are not a common face";
+      }
       if (dual_[h1.index()][static_cast<std::size_t>(f1)].id >= 0 ||
-          dual_[h2.index()][static_cast<std::size_t>(f2)].id >= 0)
+          dual_[h2.index()][static_cast<std::size_t>(f2)].id >= 0) {
         return "merging " + x.str() + " and " + y.str() + " would put a face of " + pair +
                " in more than two hexes";
+      }
     }
   }
   return std::nullopt;
@@ -857,11 +865,12 @@ bool Weaver::try_parallel_merging(const std::vector<Passage>& strip, std::string
     *why = "two faces of side A face the same face of side B";
     return false;
   }
-  for (FaceIndex g : images)
+  for (FaceIndex g : images) {
     if (seen[static_cast<std::size_t>(g)] == in_a) {
       *why = "the regions on the two sides overlap";
       return false;
     }
+  }
   // Every face of the front component must be used: the strip, side A and side B.
   const std::size_t component = component_of_[front_.face(strip.front().face).nodes[0].index()];
   std::size_t faces_in_component = 0;
@@ -992,11 +1001,12 @@ bool Weaver::try_nonconvexity_seam(FaceIndex f2, int side, std::string* why) {
     *why = "a node of the hex face off the common edge is an input node";
     return false;
   }
-  for (NodeId n : {a, b})
+  for (NodeId n : {a, b}) {
     if (n == c || n == d) {
       *why = "the faces share more than one edge";
       return false;
     }
+  }
   // Folding about E takes a (next to v in F1) onto d (next to v in F2), b onto c.
   if (share_hex(a, d) || share_hex(b, c)) {
     *why = "a merge would join two nodes of one hex";
@@ -1027,7 +1037,7 @@ bool Weaver::try_nonconvexity_seam(FaceIndex f2, int side, std::string* why) {
   bool ok = true;
   for (NodeId n : {c, d, u, v}) {
     const auto& faces = front_.faces_at(n);
-    for (std::size_t i = 0; i < faces.size() && ok; ++i)
+    for (std::size_t i = 0; i < faces.size() && ok; ++i) {
       for (std::size_t j = i + 1; j < faces.size(); ++j) {
         const FaceIndex p = faces[i], q = faces[j];
         if (sorted_nodes(front_.face(p).nodes) != sorted_nodes(front_.face(q).nodes)) continue;
@@ -1047,6 +1057,7 @@ bool Weaver::try_nonconvexity_seam(FaceIndex f2, int side, std::string* why) {
         i = static_cast<std::size_t>(-1);
         break;
       }
+    }
   }
   std::optional<std::string> broken;
   if (ok) broken = front_.check_invariants();
@@ -1249,12 +1260,13 @@ void Weaver::label_components() {
       stack.pop_back();
       component_of_[n.index()] = comp;
       ++component_size_[comp];
-      for (FaceIndex f : front_.faces_at(n))
+      for (FaceIndex f : front_.faces_at(n)) {
         for (NodeId m : front_.face(f).nodes) {
           if (node_mark_[m.index()] == mark) continue;
           node_mark_[m.index()] = mark;
           stack.push_back(m);
         }
+      }
     }
   }
 }
@@ -1402,18 +1414,20 @@ std::vector<TraceCandidate> Weaver::rank_extended(std::vector<TraceCandidate> al
     }
   }
   if (!decided) {
-    if (par.nonconvex_filter)
+    if (par.nonconvex_filter) {
       keep(
           "nonconvex", [](const TraceCandidate& c) { return c.nonconvex_on_side == 0; }, true);
+    }
     if (par.depth_filter) {
       std::int32_t least = std::numeric_limits<std::int32_t>::max();
       for (const auto& c : set) least = std::min(least, c.depth);
       keep(
           "depth", [least](const TraceCandidate& c) { return c.depth == least; }, false);
     }
-    if (par.first_convex_filter)
+    if (par.first_convex_filter) {
       keep(
           "first_convex", [](const TraceCandidate& c) { return c.crossed_sharp > 0; }, true);
+    }
     if (par.second_convex_filter) {
       double best = 0.0;
       const auto ratio = [](const TraceCandidate& c) {
@@ -1449,10 +1463,11 @@ std::vector<Transversal> Weaver::transversals(const std::vector<Passage>& strip,
   out.reserve(strip.size());
   for (const Passage& p : strip) {
     const stc::Quad& n = front_.face(p.face).nodes;
-    if (side == 0)
+    if (side == 0) {
       out.push_back({at(n, p.entry), at(n, p.entry + 1)});
-    else
+    } else {
       out.push_back({at(n, p.entry + 1), at(n, p.entry)});
+    }
   }
   return out;
 }
@@ -1514,10 +1529,11 @@ std::optional<std::string> Weaver::shrink(const std::vector<Passage>& initial, i
       if (k == 2) {
         why = "valence 2 but its seam is blocked";
         std::string detail;
-        if (!try_seam(v, &detail))
+        if (!try_seam(v, &detail)) {
           why += " (" + detail + ")";
-        else
+        } else {
           applied = true;
+        }
       } else if (k == 3) {
         applied = try_cross(v, &why);
         if (!applied) why = "cross refused: " + why;
@@ -1624,9 +1640,10 @@ WeaveResult Weaver::run() {
           e.shrink = shrink_index_;
           record(std::move(e));
         }
-        if (failures.size() < 2000)
+        if (failures.size() < 2000) {
           failures +=
               "\n  loop " + std::to_string(c.loop) + " side " + "AB"[c.side] + ": " + *failure;
+        }
         if (saved) {
           restore(std::move(*saved));
           continue;
@@ -1637,10 +1654,11 @@ WeaveResult Weaver::run() {
         }
       }
     }
-    if (!progressed)
+    if (!progressed) {
       throw WeaveError("weave: every (loop, side) is blocked with " +
                        std::to_string(front_.num_faces()) + " front faces left and " +
                        std::to_string(hexes_.size()) + " hexes built:" + failures);
+    }
     seam_fixpoint();
   }
 
