@@ -174,8 +174,17 @@ class Weaver {
     stats_ = s.stats;
     stats_.selections = now.selections;
     stats_.failed_shrinks = now.failed_shrinks;
-    stats_.rolled_back_shrinks = now.rolled_back_shrinks + 1;
+    stats_.rolled_back_shrinks = now.rolled_back_shrinks;
     node_mark_.resize(front_.num_nodes());
+  }
+  /// Merges node `gone` into `keep` on the front and in the node -> hexes lists.
+  void merge_nodes(NodeId keep, NodeId gone) {
+    front_.merge_nodes(keep, gone);
+    auto& hk = hexes_at_[keep.index()];
+    auto& hg = hexes_at_[gone.index()];
+    hk.insert(hk.end(), hg.begin(), hg.end());
+    hg.clear();
+    hg.shrink_to_fit();
   }
   NodeId new_node() {
     const NodeId n = front_.new_node();
@@ -248,6 +257,15 @@ class Weaver {
       stamp_ = 1;
     }
     return stamp_;
+  }
+  /// A fresh stamp for a per-face mark array, grown to the front's face capacity.
+  std::uint32_t next_face_stamp(std::vector<std::uint32_t>& marks, std::uint32_t& stamp) const {
+    if (marks.size() < front_.face_capacity()) marks.resize(front_.face_capacity(), 0);
+    if (++stamp == 0) {
+      std::fill(marks.begin(), marks.end(), 0);
+      stamp = 1;
+    }
+    return stamp;
   }
 
   Front front_;
@@ -616,12 +634,7 @@ bool Weaver::try_seam(NodeId v, std::string* why) {
   front_.remove_face(fa);
   front_.remove_face(fb);
   if (x != y) {
-    front_.merge_nodes(keep, gone);
-    auto& hk = hexes_at_[keep.index()];
-    auto& hg = hexes_at_[gone.index()];
-    hk.insert(hk.end(), hg.begin(), hg.end());
-    hg.clear();
-    hg.shrink_to_fit();
+    merge_nodes(keep, gone);
     for (const auto& [f, g] : coincident) {
       if (!front_.is_alive(f) || !front_.is_alive(g)) continue;
       link(front_.face(f).owner, front_.face(g).owner);
@@ -766,12 +779,7 @@ bool Weaver::try_blind_chord(NodeId v, const std::vector<Passage>& strip, std::s
 /// two ends of one sheet: it is closed at once by one hex per face pair (the first chord
 /// made, along the strip, is the torus of hexes of the seed). No node is created or merged.
 bool Weaver::try_parallel_merging(const std::vector<Passage>& strip, std::string* why) {
-  if (face_mark_.size() < front_.face_capacity()) face_mark_.resize(front_.face_capacity(), 0);
-  if (++face_stamp_ == 0) {
-    std::fill(face_mark_.begin(), face_mark_.end(), 0);
-    face_stamp_ = 1;
-  }
-  const std::uint32_t strip_stamp = face_stamp_;
+  const std::uint32_t strip_stamp = next_face_stamp(face_mark_, face_stamp_);
   for (const Passage& p : strip) {
     if (face_mark_[static_cast<std::size_t>(p.face)] == strip_stamp) {
       *why = "the strip passes a face twice";
@@ -809,12 +817,7 @@ bool Weaver::try_parallel_merging(const std::vector<Passage>& strip, std::string
   }
   // Extend the map over side A's region, face by face, from the rim inward.
   std::vector<std::uint32_t>& seen = side_face_mark_;
-  if (seen.size() < front_.face_capacity()) seen.resize(front_.face_capacity(), 0);
-  if (++side_face_stamp_ == 0) {
-    std::fill(seen.begin(), seen.end(), 0);
-    side_face_stamp_ = 1;
-  }
-  const std::uint32_t in_a = side_face_stamp_;
+  const std::uint32_t in_a = next_face_stamp(side_face_mark_, side_face_stamp_);
   std::vector<std::pair<FaceIndex, FaceIndex>> pairs;
   std::vector<FaceIndex> images;
   for (FaceIndex f : queue) seen[static_cast<std::size_t>(f)] = in_a;
@@ -1017,21 +1020,13 @@ bool Weaver::try_nonconvexity_seam(FaceIndex f2, int side, std::string* why) {
     return false;
   }
   Snapshot saved = save();
-  const auto merge = [this](NodeId keep, NodeId gone) {
-    front_.merge_nodes(keep, gone);
-    auto& hk = hexes_at_[keep.index()];
-    auto& hg = hexes_at_[gone.index()];
-    hk.insert(hk.end(), hg.begin(), hg.end());
-    hg.clear();
-  };
-  merge(d, a);
+  merge_nodes(d, a);
   if (auto conflict = merge_conflict(b, c, c, b)) {
     restore(std::move(saved));
-    --stats_.rolled_back_shrinks;
     *why = *conflict;
     return false;
   }
-  merge(c, b);
+  merge_nodes(c, b);
   // Glue every pair of faces that now coincide around the four nodes (F1 and F2 first).
   std::vector<std::string> whiskers;
   bool ok = true;
@@ -1063,7 +1058,6 @@ bool Weaver::try_nonconvexity_seam(FaceIndex f2, int side, std::string* why) {
   if (ok) broken = front_.check_invariants();
   if (!ok || broken) {
     restore(std::move(saved));
-    --stats_.rolled_back_shrinks;
     *why = ok ? "the fold would break the front: " + *broken
               : "the fold would glue two faces "
                 "that must not meet";
@@ -1146,11 +1140,7 @@ std::array<TraceCandidate, 2> Weaver::weigh(const std::vector<Passage>& strip) {
   c[0].side = 0;
   c[1].side = 1;
   c[0].length = c[1].length = strip.size();
-  if (face_mark_.size() < front_.face_capacity()) face_mark_.resize(front_.face_capacity(), 0);
-  if (++face_stamp_ == 0) {
-    std::fill(face_mark_.begin(), face_mark_.end(), 0);
-    face_stamp_ = 1;
-  }
+  next_face_stamp(face_mark_, face_stamp_);
   bool self_intersecting = false;
   for (const Passage& p : strip) {
     if (face_mark_[static_cast<std::size_t>(p.face)] == face_stamp_) self_intersecting = true;
@@ -1305,12 +1295,7 @@ std::array<TraceCandidate, 2> Weaver::extended_properties(const std::vector<Pass
       stack.push_back(at(n, d == 0 ? p.entry + 3 : p.entry + 2));
     }
     std::vector<FaceIndex> faces;
-    if (side_face_mark_.size() < front_.face_capacity())
-      side_face_mark_.resize(front_.face_capacity(), 0);
-    if (++side_face_stamp_ == 0) {
-      std::fill(side_face_mark_.begin(), side_face_mark_.end(), 0);
-      side_face_stamp_ = 1;
-    }
+    next_face_stamp(side_face_mark_, side_face_stamp_);
     while (!stack.empty()) {
       const NodeId n = stack.back();
       stack.pop_back();
@@ -1491,11 +1476,7 @@ std::optional<std::string> Weaver::shrink(const std::vector<Passage>& initial, i
     if (strip.empty()) return std::nullopt;
     edges = transversals(strip, 0);
     // mark strip faces for the blind chord rule
-    if (face_mark_.size() < front_.face_capacity()) face_mark_.resize(front_.face_capacity(), 0);
-    if (++face_stamp_ == 0) {
-      std::fill(face_mark_.begin(), face_mark_.end(), 0);
-      face_stamp_ = 1;
-    }
+    next_face_stamp(face_mark_, face_stamp_);
     for (const Passage& p : strip) face_mark_[static_cast<std::size_t>(p.face)] = face_stamp_;
     // side nodes in loop order, each once, then by increasing valence (stable)
     order.clear();
@@ -1646,6 +1627,7 @@ WeaveResult Weaver::run() {
         }
         if (saved) {
           restore(std::move(*saved));
+          ++stats_.rolled_back_shrinks;
           continue;
         }
         if (rules_applied_ != before) {
