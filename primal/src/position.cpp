@@ -16,20 +16,10 @@
 #include <tuple>
 
 #include "stcweave/stc/errors.hpp"
+#include "stcweave/stc/hex_complex.hpp"
 
 namespace stcweave::primal {
 namespace {
-
-/// Verdict's corner table: corner node, then its three edge neighbours in the order that
-/// gives a positive determinant for a positively oriented hex.
-constexpr std::array<std::array<int, 4>, 8> kCorners = {{{0, 1, 3, 4},
-                                                         {1, 2, 0, 5},
-                                                         {2, 3, 1, 6},
-                                                         {3, 0, 2, 7},
-                                                         {4, 7, 5, 0},
-                                                         {5, 4, 6, 1},
-                                                         {6, 5, 7, 2},
-                                                         {7, 6, 4, 3}}};
 
 using HexNodes = std::array<std::int32_t, 8>;
 
@@ -229,7 +219,7 @@ class Problem {
         const std::array<Eigen::Vector3d, 3> e = edges(hx, k);
         energy += corner_energy(e, eps_, theta_, with_gradient ? &g : nullptr);
         if (!with_gradient) continue;
-        const auto& c = kCorners[k];
+        const auto& c = kHexCorners[k];
         for (std::size_t j = 0; j < 3; ++j) {
           double* to = hg + 3 * static_cast<std::size_t>(c[j + 1]);
           double* from = hg + 3 * static_cast<std::size_t>(c[0]);
@@ -249,7 +239,7 @@ class Problem {
 
   [[nodiscard]] std::array<Eigen::Vector3d, 3> edges(std::size_t hx, std::size_t k) const {
     const HexNodes& n = hexes_[hx];
-    const auto& c = kCorners[k];
+    const auto& c = kHexCorners[k];
     const Eigen::Vector3d o = positions_.row(n[static_cast<std::size_t>(c[0])]).transpose();
     return {positions_.row(n[static_cast<std::size_t>(c[1])]).transpose() - o,
             positions_.row(n[static_cast<std::size_t>(c[2])]).transpose() - o,
@@ -322,17 +312,7 @@ Points harmonic_start(const HexMesh& mesh, const std::vector<bool>& fixed) {
     if (!fixed[v] && used[v]) slot[v] = free++;
   Points out = mesh.points;
   if (free == 0) return out;
-  std::vector<std::pair<std::int32_t, std::int32_t>> edges;
-  edges.reserve(mesh.complex.hexes.size() * 12);
-  for (const stc::Hex& h : mesh.complex.hexes)
-    for (const auto& e : stc::kHexEdges) {
-      std::int32_t a = h[static_cast<std::size_t>(e[0])].value();
-      std::int32_t b = h[static_cast<std::size_t>(e[1])].value();
-      if (a > b) std::swap(a, b);
-      edges.emplace_back(a, b);
-    }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  const auto edges = stc::unique_edges(mesh.complex);
   std::vector<Eigen::Triplet<double>> triplets;
   triplets.reserve(edges.size() * 4);
   Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Zero(free, 3);
@@ -386,7 +366,7 @@ std::vector<ImpossibleCorner> impossible_corners(const HexMesh& mesh,
     const stc::Hex& h = mesh.complex.hexes[hx];
     const std::array<double, 8> dets = hex_corner_jacobians(mesh.points, h);
     for (int k = 0; k < 8; ++k) {
-      const auto& c = kCorners[static_cast<std::size_t>(k)];
+      const auto& c = kHexCorners[static_cast<std::size_t>(k)];
       std::array<std::int32_t, 3> nb = {h[static_cast<std::size_t>(c[1])].value(),
                                         h[static_cast<std::size_t>(c[2])].value(),
                                         h[static_cast<std::size_t>(c[3])].value()};

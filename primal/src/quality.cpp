@@ -10,17 +10,6 @@
 namespace stcweave::primal {
 namespace {
 
-/// For corner k: the corner node and its three edge neighbours, ordered so that the
-/// determinant is positive for a positively oriented hex (Verdict's table).
-constexpr std::array<std::array<int, 4>, 8> kCorners = {{{0, 1, 3, 4},
-                                                         {1, 2, 0, 5},
-                                                         {2, 3, 1, 6},
-                                                         {3, 0, 2, 7},
-                                                         {4, 7, 5, 0},
-                                                         {5, 4, 6, 1},
-                                                         {6, 5, 7, 2},
-                                                         {7, 6, 4, 3}}};
-
 /// Parameters of the nodes in [0,1]^3 (VTK order).
 constexpr std::array<std::array<int, 3>, 8> kNodeParams = {
     {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}};
@@ -98,14 +87,14 @@ Validity validity_of(const Corners& p, int depth) {
 std::array<double, 8> hex_corner_jacobians(const Points& points, const stc::Hex& h) {
   const Corners p = corners_of(points, h);
   std::array<double, 8> out{};
-  for (std::size_t k = 0; k < 8; ++k) out[k] = corner_det(p, kCorners[k]);
+  for (std::size_t k = 0; k < 8; ++k) out[k] = corner_det(p, kHexCorners[k]);
   return out;
 }
 
 double hex_corner_scaled_jacobian(const Points& points, const stc::Hex& h) {
   const Corners p = corners_of(points, h);
   double best = std::numeric_limits<double>::max();
-  for (const auto& c : kCorners) {
+  for (const auto& c : kHexCorners) {
     const Eigen::Vector3d& o = p[static_cast<std::size_t>(c[0])];
     best = std::min(
         best, unit_det(p[static_cast<std::size_t>(c[1])] - o, p[static_cast<std::size_t>(c[2])] - o,
@@ -123,7 +112,7 @@ double hex_jacobian(const Points& points, const stc::Hex& h) {
   const Corners p = corners_of(points, h);
   const std::array<Eigen::Vector3d, 3> x = principal_axes(p);
   double best = x[0].dot(x[1].cross(x[2])) / 64.0;
-  for (const auto& c : kCorners) best = std::min(best, corner_det(p, c));
+  for (const auto& c : kHexCorners) best = std::min(best, corner_det(p, c));
   return best;
 }
 
@@ -142,7 +131,7 @@ double hex_edge_ratio(const Points& points, const stc::Hex& h) {
 double hex_max_aspect_frobenius(const Points& points, const stc::Hex& h) {
   const Corners p = corners_of(points, h);
   double worst = 0.0;
-  for (const auto& c : kCorners) {
+  for (const auto& c : kHexCorners) {
     const Eigen::Vector3d& o = p[static_cast<std::size_t>(c[0])];
     const Eigen::Vector3d e1 = p[static_cast<std::size_t>(c[1])] - o;
     const Eigen::Vector3d e2 = p[static_cast<std::size_t>(c[2])] - o;
@@ -175,7 +164,7 @@ std::array<double, 27> hex_bezier_coefficients(const std::array<Eigen::Vector3d,
   const auto P = [&p](int a) -> const Eigen::Vector3d& { return p[static_cast<std::size_t>(a)]; };
   // J0..J7: the corner values; J8..J19: tets with two edge midpoints (Johnen et al.).
   std::array<double, 20> j{};
-  for (std::size_t k = 0; k < 8; ++k) j[k] = corner_det(p, kCorners[k]);
+  for (std::size_t k = 0; k < 8; ++k) j[k] = corner_det(p, kHexCorners[k]);
   j[8] = tet6(P(0), P(1), m(2, 3), m(4, 5));
   j[9] = tet6(P(1), P(2), m(3, 0), m(5, 6));
   j[10] = tet6(P(2), P(3), m(0, 1), m(6, 7));

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "stcweave/stc/errors.hpp"
+#include "stcweave/stc/hex_complex.hpp"
 
 namespace stcweave::primal {
 
@@ -16,18 +17,7 @@ HarmonicReport harmonic_positions(HexMesh& mesh, std::size_t num_fixed) {
   const std::size_t free = n - num_fixed;
   report.free_nodes = free;
   // Unique hex edges (as node pairs), each contributing to the graph Laplacian once.
-  std::vector<std::pair<std::int32_t, std::int32_t>> edges;
-  edges.reserve(mesh.complex.hexes.size() * 12);
-  for (const stc::Hex& h : mesh.complex.hexes) {
-    for (const auto& e : stc::kHexEdges) {
-      std::int32_t a = h[static_cast<std::size_t>(e[0])].value();
-      std::int32_t b = h[static_cast<std::size_t>(e[1])].value();
-      if (a > b) std::swap(a, b);
-      edges.emplace_back(a, b);
-    }
-  }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  const auto edges = stc::unique_edges(mesh.complex);
 
   using Triplet = Eigen::Triplet<double>;
   std::vector<Triplet> triplets;

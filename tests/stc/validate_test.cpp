@@ -264,3 +264,19 @@ TEST(Validate, LargeBoxIsValid) {
 
 }  // namespace
 }  // namespace stcweave::stc
+
+namespace stcweave::stc {
+namespace {
+
+TEST(UniqueEdges, OfABoxAreItsGridEdgesSortedOnce) {
+  // An a x b x c box has a(b+1)(c+1) + (a+1)b(c+1) + (a+1)(b+1)c edges.
+  const auto box = test::box_hexes(3, 2, 1);
+  const auto edges = unique_edges(box.complex);
+  EXPECT_EQ(edges.size(), 3u * 3 * 2 + 4u * 2 * 2 + 4u * 3 * 1);
+  EXPECT_TRUE(std::is_sorted(edges.begin(), edges.end()));
+  EXPECT_TRUE(std::adjacent_find(edges.begin(), edges.end()) == edges.end());
+  for (const auto& [a, b] : edges) EXPECT_LT(a, b);
+}
+
+}  // namespace
+}  // namespace stcweave::stc

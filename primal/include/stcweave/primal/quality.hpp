@@ -46,6 +46,18 @@ namespace stcweave::primal {
 /// DBL_MAX when a corner determinant is <= DBL_MIN.
 [[nodiscard]] double hex_max_aspect_frobenius(const Points& points, const stc::Hex& h);
 
+/// Verdict's corner table: for corner k, the corner node and its three edge neighbours,
+/// ordered so that the determinant of the three edge vectors is positive on a positively
+/// oriented hex (VTK order). Shared by the quality metrics and the positioning energy.
+inline constexpr std::array<std::array<int, 4>, 8> kHexCorners = {{{0, 1, 3, 4},
+                                                                   {1, 2, 0, 5},
+                                                                   {2, 3, 1, 6},
+                                                                   {3, 0, 2, 7},
+                                                                   {4, 7, 5, 0},
+                                                                   {5, 4, 6, 1},
+                                                                   {6, 5, 7, 2},
+                                                                   {7, 6, 4, 3}}};
+
 /// The 8 corner determinants det A_0..det A_7 of hex `h` (Verdict's corner table).
 [[nodiscard]] std::array<double, 8> hex_corner_jacobians(const Points& points, const stc::Hex& h);
 

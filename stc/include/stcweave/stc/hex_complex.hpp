@@ -2,6 +2,8 @@
 /// \file
 /// Basic queries on a hex complex: its faces and its boundary.
 
+#include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "stcweave/stc/quad_surface.hpp"
@@ -22,5 +24,8 @@ struct HexFaceRef {
 /// \param origin when given, receives for each boundary quad the hex face it comes from.
 QuadSurface boundary_surface(const HexComplex& complex, std::vector<HexFaceRef>* origin = nullptr,
                              std::vector<HexFaceRef>* nonmanifold = nullptr);
+
+/// The distinct edges of the hexes as node-value pairs (smaller value first), sorted.
+std::vector<std::pair<std::int32_t, std::int32_t>> unique_edges(const HexComplex& complex);
 
 }  // namespace stcweave::stc
