@@ -4,23 +4,15 @@
 #include <algorithm>
 #include <map>
 
+#include "stcweave/primal/generate.hpp"
+
 namespace stcweave::test {
 
 primal::HexMesh box_hexes(int a, int b, int c, double sx, double sy, double sz) {
-  primal::HexMesh m;
-  const auto id = [&](int i, int j, int k) { return NodeId(i + (a + 1) * (j + (b + 1) * k)); };
-  const auto n = static_cast<Eigen::Index>((a + 1) * (b + 1) * (c + 1));
-  m.points.resize(n, 3);
-  for (int k = 0; k <= c; ++k)
-    for (int j = 0; j <= b; ++j)
-      for (int i = 0; i <= a; ++i) m.points.row(id(i, j, k).value()) << i * sx, j * sy, k * sz;
-  m.complex.num_nodes = static_cast<std::size_t>(n);
-  for (int k = 0; k < c; ++k)
-    for (int j = 0; j < b; ++j)
-      for (int i = 0; i < a; ++i)
-        m.complex.hexes.push_back({id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k),
-                                   id(i, j + 1, k), id(i, j, k + 1), id(i + 1, j, k + 1),
-                                   id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)});
+  primal::HexMesh m = primal::box_hexes(a, b, c);  // unit cubes, node (i, j, k) at (i, j, k)
+  m.points.col(0) *= sx;
+  m.points.col(1) *= sy;
+  m.points.col(2) *= sz;
   return m;
 }
 
