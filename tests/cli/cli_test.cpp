@@ -158,6 +158,10 @@ TEST_F(Cli, WeavingOptionsAreCheckedAndRecorded) {
   EXPECT_EQ(bad.code, 2) << bad.out;
   EXPECT_NE(bad.out.find("out of order"), std::string::npos) << bad.out;
   EXPECT_FALSE(fs::exists(out));
+  const CliRun start = run("mesh " + data("lblock.obj") + " -o " + out.string() + " --start x");
+  EXPECT_EQ(start.code, 2) << start.out;
+  EXPECT_NE(start.out.find("--start must be layers or harmonic"), std::string::npos) << start.out;
+  EXPECT_FALSE(fs::exists(out));
   const CliRun ok = run("mesh " + data("lblock.obj") + " -o " + out.string() +
                         " -q --no-depth-filter --flat 185 --report " + report.string());
   ASSERT_EQ(ok.code, 0) << ok.out;
