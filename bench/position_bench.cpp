@@ -3,11 +3,13 @@
 // - BM_PositionScrambledBox/n: the n^3 structured box with every interior node moved by a
 //   seeded random vector of up to half its shortest edge (n = 10, 22, 46: about 1k, 10k and
 //   100k hexes). Target: 100k hexes in under 10 s on the 2-core development machine.
-// - BM_PositionBentBox/n: the n^3 box bent into a 270-degree C, interior from the harmonic
-//   map of the bent boundary (tangled: research/geometry.md §3.3), a harder case.
+// - BM_PositionBentBox/n/newton_after: the n^3 box bent into a 270-degree C, interior from
+//   the harmonic map of the bent boundary (tangled: research/geometry.md §3.3), a harder
+//   case; newton_after 0 is L-BFGS alone, 100 adds projected Newton steps to slow rounds
+//   (n = 20 with Newton takes about nine minutes: not run by default, docs/geometry.md).
 //
 // Counters: hexes, inverted hexes before / after, min scaled Jacobian after, L-BFGS
-// iterations and rounds.
+// iterations, Newton steps and rounds.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -27,6 +29,7 @@ void report(benchmark::State& state, const primal::PositionReport& r, std::size_
   state.counters["min_sj"] = r.min_scaled_jacobian_after;
   state.counters["iterations"] = static_cast<double>(r.iterations);
   state.counters["rounds"] = static_cast<double>(r.outer_iterations);
+  state.counters["newton"] = static_cast<double>(r.newton_steps);
 }
 
 void BM_PositionScrambledBox(benchmark::State& state) {
@@ -59,6 +62,7 @@ void BM_PositionBentBox(benchmark::State& state) {
   primal::PositionOptions options;
   options.num_fixed = test::boundary_first(start);
   options.start = primal::StartPosition::Harmonic;
+  options.newton_after = static_cast<int>(state.range(1));
   primal::PositionReport r;
   for (auto _ : state) {
     state.PauseTiming();
@@ -70,9 +74,13 @@ void BM_PositionBentBox(benchmark::State& state) {
   report(state, r, start.complex.hexes.size());
 }
 BENCHMARK(BM_PositionBentBox)
-    ->Arg(6)
-    ->Arg(12)
-    ->Arg(20)
+    ->ArgNames({"n", "newton_after"})
+    ->Args({6, 0})
+    ->Args({12, 0})
+    ->Args({20, 0})
+    ->Args({32, 0})
+    ->Args({6, 100})
+    ->Args({12, 100})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 

@@ -36,6 +36,8 @@ struct MeshArgs {
   std::string start = "harmonic";
   int position_rounds = 100;
   int position_iterations = 3000;
+  int position_newton_after = primal::PositionOptions{}.newton_after;
+  int position_newton_steps = primal::PositionOptions{}.max_newton_steps;
   double position_theta = 0.5;
   int certify_depth = 4;
 };
@@ -56,6 +58,7 @@ nlohmann::json position_json(const primal::PositionReport& p) {
   return {{"free_nodes", p.free_nodes},
           {"rounds", p.outer_iterations},
           {"iterations", p.iterations},
+          {"newton_steps", p.newton_steps},
           {"energy_before", p.energy_before},
           {"energy_after", p.energy_after},
           {"epsilon", p.epsilon},
@@ -155,6 +158,8 @@ int run_mesh(const MeshArgs& a) {
   options.position.max_outer_iterations = a.position_rounds;
   options.position.max_inner_iterations = a.position_iterations;
   options.position.theta = a.position_theta;
+  options.position.newton_after = a.position_newton_after;
+  options.position.max_newton_steps = a.position_newton_steps;
   options.position.certify_depth = a.certify_depth;
   const bool show_progress = a.progress || (!a.quiet && isatty(STDERR_FILENO) != 0);
   if (show_progress) {
@@ -298,6 +303,15 @@ Action add_mesh_command(CLI::App& app) {
                   "untangling: most L-BFGS iterations per round")
       ->capture_default_str()
       ->check(CLI::Range(1, 10000000));
+  sub->add_option("--position-newton-after", args->position_newton_after,
+                  "untangling: a round whose L-BFGS uses this many iterations goes on with "
+                  "projected Newton steps (sparse Cholesky); 0: never")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 10000000));
+  sub->add_option("--position-newton-steps", args->position_newton_steps,
+                  "untangling: most projected Newton steps per round")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
   sub->add_option("--position-theta", args->position_theta,
                   "untangling: weight of the volume term against the shape term, in [0, 1]")
       ->capture_default_str()

@@ -2,7 +2,9 @@
 
 #include <LBFGS.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <algorithm>
@@ -11,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 #include <tuple>
@@ -55,6 +58,87 @@ double corner_energy(const std::array<Eigen::Vector3d, 3>& e, double eps, double
     for (std::size_t k = 0; k < 3; ++k) (*g)[k] = a * e[k] + b * cof[k];
   }
   return energy;
+}
+
+/// The Hessian of one corner's energy with respect to its edge columns (9 x 9, blocks in
+/// the order e0, e1, e2), before any projection. Same notation as `corner_energy`:
+/// E = (1 - theta) F phi(d) + theta psi(d) with F = |J|^2, phi = chi^(-2/3),
+/// psi = (1 + d^2) / chi, so that
+/// H = (1 - theta) [2 phi I + 2 phi' (e gd^T + gd e^T)] + E_dd gd gd^T + E_d D2d,
+/// where gd = grad det = the cofactor columns, D2d the (constant-pattern) second
+/// derivative of the determinant, E_d = (1 - theta) F phi' + theta psi' and
+/// E_dd = (1 - theta) F phi'' + theta psi''.
+Eigen::Matrix<double, 9, 9> corner_hessian(const std::array<Eigen::Vector3d, 3>& e, double eps,
+                                           double theta) {
+  const std::array<Eigen::Vector3d, 3> cof = {e[1].cross(e[2]), e[2].cross(e[0]), e[0].cross(e[1])};
+  const double d = e[0].dot(cof[0]);
+  const double r = std::sqrt(eps * eps + d * d);
+  const double c = chi(eps, d);
+  const double c1 = chi_derivative(eps, d);
+  const double c2 = 0.5 * eps * eps / (r * r * r);
+  const double frob = e[0].squaredNorm() + e[1].squaredNorm() + e[2].squaredNorm();
+  const double phi = 1.0 / std::cbrt(c * c);
+  const double phi1 = -(2.0 / 3.0) * phi / c * c1;
+  const double phi2 = (10.0 / 9.0) * phi / (c * c) * c1 * c1 - (2.0 / 3.0) * phi / c * c2;
+  const double q = 1.0 + d * d;
+  const double psi1 = 2.0 * d / c - q * c1 / (c * c);
+  const double psi2 =
+      2.0 / c - 4.0 * d * c1 / (c * c) + 2.0 * q * c1 * c1 / (c * c * c) - q * c2 / (c * c);
+  const double ed = (1.0 - theta) * frob * phi1 + theta * psi1;
+  const double edd = (1.0 - theta) * frob * phi2 + theta * psi2;
+  Eigen::Matrix<double, 9, 1> ev;
+  Eigen::Matrix<double, 9, 1> gd;
+  for (Eigen::Index k = 0; k < 3; ++k) {
+    ev.segment<3>(3 * k) = e[static_cast<std::size_t>(k)];
+    gd.segment<3>(3 * k) = cof[static_cast<std::size_t>(k)];
+  }
+  Eigen::Matrix<double, 9, 9> hess =
+      (2.0 * (1.0 - theta) * phi) * Eigen::Matrix<double, 9, 9>::Identity();
+  hess.noalias() += (2.0 * (1.0 - theta) * phi1) * (ev * gd.transpose() + gd * ev.transpose());
+  hess.noalias() += edd * gd * gd.transpose();
+  // d2 det / d e_a d e_b = [e_c]x with the sign of the permutation (a, b, c).
+  const auto cross = [](const Eigen::Vector3d& v) {
+    Eigen::Matrix3d m;
+    m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+    return m;
+  };
+  const Eigen::Matrix3d x0 = ed * cross(e[0]);
+  const Eigen::Matrix3d x1 = ed * cross(e[1]);
+  const Eigen::Matrix3d x2 = ed * cross(e[2]);
+  hess.block<3, 3>(0, 3) -= x2;
+  hess.block<3, 3>(3, 0) += x2;
+  hess.block<3, 3>(0, 6) += x1;
+  hess.block<3, 3>(6, 0) -= x1;
+  hess.block<3, 3>(3, 6) -= x0;
+  hess.block<3, 3>(6, 3) += x0;
+  return hess;
+}
+
+/// `m` with its negative eigenvalues set to zero (the nearest positive semi-definite
+/// matrix in the Frobenius norm).
+Eigen::Matrix<double, 9, 9> project_psd(const Eigen::Matrix<double, 9, 9>& m) {
+  // Most corners of an untangled mesh are already definite: a Cholesky says so for a
+  // fraction of the cost of the eigen-decomposition.
+  if (Eigen::LLT<Eigen::Matrix<double, 9, 9>>(m).info() == Eigen::Success) return m;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 9, 9>> eig(m);
+  const Eigen::Matrix<double, 9, 1> lambda = eig.eigenvalues().cwiseMax(0.0);
+  return eig.eigenvectors() * lambda.asDiagonal() * eig.eigenvectors().transpose();
+}
+
+/// Runs fn(first, last) on `parts` contiguous slices of 0 .. count-1, slice 0 on the calling
+/// thread.
+template <typename Fn>
+void run_sliced(std::size_t count, std::size_t parts, const Fn& fn) {
+  if (parts <= 1) {
+    fn(std::size_t{0}, count);
+    return;
+  }
+  std::vector<std::thread> pool;
+  pool.reserve(parts - 1);
+  for (std::size_t t = 1; t < parts; ++t)
+    pool.emplace_back([&fn, t, parts, count] { fn(count * t / parts, count * (t + 1) / parts); });
+  fn(std::size_t{0}, count / parts);
+  for (std::thread& th : pool) th.join();
 }
 
 /// The state shared by the energy evaluations: hexes, which corners count, which nodes
@@ -175,19 +259,9 @@ class Problem {
   /// the result does not depend on the number of threads.
   double evaluate(Eigen::VectorXd* grad) {
     const std::size_t m = hexes_.size();
-    const std::size_t parts = m >= kParallelHexes ? threads_ : 1;
-    if (parts <= 1) {
-      evaluate_hexes(0, m, grad != nullptr);
-    } else {
-      std::vector<std::thread> pool;
-      pool.reserve(parts - 1);
-      for (std::size_t t = 1; t < parts; ++t)
-        pool.emplace_back([this, t, parts, m, grad] {
-          evaluate_hexes(m * t / parts, m * (t + 1) / parts, grad != nullptr);
-        });
-      evaluate_hexes(0, m / parts, grad != nullptr);
-      for (std::thread& th : pool) th.join();
-    }
+    run_sliced(m, parts(m), [this, grad](std::size_t first, std::size_t last) {
+      evaluate_hexes(first, last, grad != nullptr);
+    });
     double total = 0.0;
     for (double e : hex_energy_) total += e;
     if (grad != nullptr) {
@@ -202,6 +276,39 @@ class Problem {
   }
 
   void set_threads(std::size_t threads) { threads_ = std::max<std::size_t>(1, threads); }
+  /// Threads for a job over `count` hexes.
+  [[nodiscard]] std::size_t parts(std::size_t count) const {
+    return count >= kParallelHexes ? threads_ : 1;
+  }
+
+  /// Free index of node v, or -1 when v is fixed.
+  [[nodiscard]] std::int32_t slot(std::int32_t v) const {
+    return slot_[static_cast<std::size_t>(v)];
+  }
+
+  /// The Hessian of hex hx's energy with respect to its 8 nodes (24 x 24, node-major, x y z),
+  /// each corner's part projected to positive semi-definite before it is added.
+  void hex_hessian(std::size_t hx, Eigen::Matrix<double, 24, 24>& out) const {
+    out.setZero();
+    for (std::size_t k = 0; k < 8; ++k) {
+      if ((active_[hx] & (1u << k)) == 0) continue;
+      const Eigen::Matrix<double, 9, 9> h = project_psd(corner_hessian(edges(hx, k), eps_, theta_));
+      // e_j = x_{c[j+1]} - x_{c[0]}: the corner node's rows are minus the sum of the others.
+      const auto& c = kHexCorners[k];
+      Eigen::Matrix<double, 12, 12> lifted;
+      const Eigen::Matrix<double, 9, 3> col_sum =
+          h.block<9, 3>(0, 0) + h.block<9, 3>(0, 3) + h.block<9, 3>(0, 6);
+      lifted.block<9, 9>(3, 3) = h;
+      lifted.block<9, 3>(3, 0) = -col_sum;
+      lifted.block<3, 9>(0, 3) = -col_sum.transpose();
+      lifted.block<3, 3>(0, 0) =
+          col_sum.block<3, 3>(0, 0) + col_sum.block<3, 3>(3, 0) + col_sum.block<3, 3>(6, 0);
+      for (std::size_t a = 0; a < 4; ++a)
+        for (std::size_t b = 0; b < 4; ++b)
+          out.block<3, 3>(3 * Eigen::Index{c[a]}, 3 * Eigen::Index{c[b]}) += lifted.block<3, 3>(
+              static_cast<Eigen::Index>(3 * a), static_cast<Eigen::Index>(3 * b));
+    }
+  }
 
  private:
   /// Below this many hexes one thread evaluates (thread start-up would dominate).
@@ -262,6 +369,102 @@ class Problem {
   std::vector<double> hex_grad_;
   std::vector<double> hex_energy_;
   std::size_t threads_ = 1;
+};
+
+/// Two local nodes of a hex that no corner couples (the body diagonals).
+bool body_diagonal(std::size_t a, std::size_t b) {
+  return (a ^ b) == 6;
+}
+
+/// Projected Newton steps: the sparse system of the per-corner projected Hessians in the
+/// free coordinates (lower triangle), its pattern and symbolic factorisation built once.
+class NewtonSolver {
+ public:
+  using Matrix = Eigen::SparseMatrix<double>;
+
+  explicit NewtonSolver(const Problem& problem) {
+    const auto n = static_cast<Eigen::Index>(3 * problem.num_free());
+    std::vector<Eigen::Triplet<double>> triplets;
+    for (const HexNodes& h : problem.hexes())
+      for (std::size_t a = 0; a < 8; ++a)
+        for (std::size_t b = 0; b < 8; ++b) {
+          const std::int32_t sa = problem.slot(h[a]);
+          const std::int32_t sb = problem.slot(h[b]);
+          if (sa < 0 || sb < 0 || sa < sb || body_diagonal(a, b)) continue;
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+              if (sa > sb || i >= j) triplets.emplace_back(3 * sa + i, 3 * sb + j, 0.0);
+        }
+    matrix_.resize(n, n);
+    matrix_.setFromTriplets(triplets.begin(), triplets.end());
+    matrix_.makeCompressed();
+    solver_.analyzePattern(matrix_);
+  }
+
+  /// Solves K dir = -grad with K the projected Hessian at the problem's current positions.
+  /// False when the factorisation fails even with a diagonal shift.
+  bool direction(const Problem& problem, const Eigen::VectorXd& grad, Eigen::VectorXd& dir) {
+    assemble(problem);
+    double mean_diagonal = 0.0;
+    for (Eigen::Index k = 0; k < matrix_.cols(); ++k) mean_diagonal += matrix_.coeff(k, k);
+    mean_diagonal /= static_cast<double>(std::max<Eigen::Index>(1, matrix_.cols()));
+    // Projection can leave K singular where every corner around a node is flat in some
+    // direction; a shift proportional to the mean diagonal keeps it definite.
+    for (double shift = 1e-8; shift <= 1e-2; shift *= 100.0) {
+      solver_.setShift(shift * mean_diagonal);
+      solver_.factorize(matrix_);
+      if (solver_.info() != Eigen::Success) continue;
+      dir = solver_.solve(-grad);
+      if (solver_.info() == Eigen::Success && dir.allFinite()) return true;
+    }
+    return false;
+  }
+
+ private:
+  static constexpr std::size_t kChunk = 4096;
+
+  /// Fills the values of `matrix_`: hex blocks computed in parallel chunk by chunk, then
+  /// added in hex order (so the sum does not depend on the thread count).
+  void assemble(const Problem& problem) {
+    std::fill(matrix_.valuePtr(), matrix_.valuePtr() + matrix_.nonZeros(), 0.0);
+    const std::size_t m = problem.hexes().size();
+    blocks_.resize(std::min(m, kChunk));
+    for (std::size_t first = 0; first < m; first += kChunk) {
+      const std::size_t count = std::min(kChunk, m - first);
+      run_sliced(count, problem.parts(count), [&](std::size_t lo, std::size_t hi) {
+        for (std::size_t i = lo; i < hi; ++i) problem.hex_hessian(first + i, blocks_[i]);
+      });
+      for (std::size_t i = 0; i < count; ++i)
+        scatter(problem, problem.hexes()[first + i], blocks_[i]);
+    }
+  }
+
+  void scatter(const Problem& problem, const HexNodes& h,
+               const Eigen::Matrix<double, 24, 24>& block) {
+    for (std::size_t a = 0; a < 8; ++a)
+      for (std::size_t b = 0; b < 8; ++b) {
+        const std::int32_t sa = problem.slot(h[a]);
+        const std::int32_t sb = problem.slot(h[b]);
+        if (sa < 0 || sb < 0 || sa < sb || body_diagonal(a, b)) continue;
+        for (int j = 0; j < 3; ++j) {
+          // Column 3 sb + j holds rows 3 sa + i contiguously (sorted rows).
+          const Eigen::Index col = 3 * sb + j;
+          const Eigen::Index begin = matrix_.outerIndexPtr()[col];
+          const Eigen::Index end = matrix_.outerIndexPtr()[col + 1];
+          const int first_row = sa > sb ? 0 : j;
+          const int* rows = matrix_.innerIndexPtr();
+          const Eigen::Index at =
+              std::lower_bound(rows + begin, rows + end, 3 * sa + first_row) - rows;
+          for (int i = first_row; i < 3; ++i)
+            matrix_.valuePtr()[at + i - first_row] +=
+                block(static_cast<Eigen::Index>(3 * a) + i, static_cast<Eigen::Index>(3 * b) + j);
+        }
+      }
+  }
+
+  Matrix matrix_;
+  Eigen::SimplicialLDLT<Matrix> solver_;
+  std::vector<Eigen::Matrix<double, 24, 24>> blocks_;
 };
 
 /// The functor LBFGS++ minimises; it remembers the best point it evaluated, so that a
@@ -345,7 +548,55 @@ Points harmonic_start(const HexMesh& mesh, const std::vector<bool>& fixed) {
   return out;
 }
 
+/// Projected Newton steps from x with Armijo backtracking, until the gradient norm is
+/// below the tolerance, a step gains less than 1e-10 (relative), no descent step is found
+/// or `max_newton_steps` are done. Returns the energy at the final x.
+double newton_descent(Problem& problem, NewtonSolver& newton, const PositionOptions& options,
+                      Eigen::VectorXd& x, PositionReport& report) {
+  Eigen::VectorXd grad;
+  Eigen::VectorXd dir;
+  problem.set_variables(x);
+  double energy = problem.evaluate(&grad);
+  for (int step = 0; step < options.max_newton_steps; ++step) {
+    if (!std::isfinite(energy) || grad.norm() <= options.gradient_tolerance) break;
+    if (!newton.direction(problem, grad, dir)) break;
+    const double slope = grad.dot(dir);
+    if (!(slope < 0.0)) break;
+    double t = 1.0;
+    double trial = std::numeric_limits<double>::infinity();
+    Eigen::VectorXd next;
+    for (int k = 0; k < 40; ++k, t *= 0.5) {
+      next = x + t * dir;
+      problem.set_variables(next);
+      trial = problem.evaluate(nullptr);
+      if (trial <= energy + 1e-4 * t * slope) break;
+    }
+    if (!(trial <= energy + 1e-4 * t * slope)) break;
+    ++report.newton_steps;
+    const double gain = (energy - trial) / std::max(1.0, std::abs(trial));
+    x = next;
+    problem.set_variables(x);
+    energy = problem.evaluate(&grad);
+    if (gain < 1e-10) break;
+  }
+  problem.set_variables(x);
+  return energy;
+}
+
 }  // namespace
+
+double winslow_corner_energy(const Eigen::Matrix3d& edges, double eps, double theta,
+                             Eigen::Matrix<double, 9, 1>* gradient,
+                             Eigen::Matrix<double, 9, 9>* hessian) {
+  const std::array<Eigen::Vector3d, 3> e = {edges.col(0), edges.col(1), edges.col(2)};
+  std::array<Eigen::Vector3d, 3> g;
+  const double energy = corner_energy(e, eps, theta, gradient != nullptr ? &g : nullptr);
+  if (gradient != nullptr)
+    for (Eigen::Index k = 0; k < 3; ++k)
+      gradient->segment<3>(3 * k) = g[static_cast<std::size_t>(k)];
+  if (hessian != nullptr) *hessian = corner_hessian(e, eps, theta);
+  return energy;
+}
 
 std::vector<ImpossibleCorner> impossible_corners(const HexMesh& mesh,
                                                  const std::vector<bool>& fixed) {
@@ -485,11 +736,14 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
     param.epsilon_rel = 0.0;
     param.past = 1;
     param.delta = 1e-10;
-    param.max_iterations = options.max_inner_iterations;
+    param.max_iterations = options.newton_after > 0
+                               ? std::min(options.newton_after, options.max_inner_iterations)
+                               : options.max_inner_iterations;
     param.max_linesearch = 100;
     param.linesearch = LBFGSpp::LBFGS_LINESEARCH_BACKTRACKING_WOLFE;
     LBFGSpp::LBFGSSolver<double, LBFGSpp::LineSearchBacktracking> solver(param);
     Objective objective(problem);
+    std::optional<NewtonSolver> newton;
     // No energy before the first round: "settled" needs two rounds (their eps may differ,
     // so a round that only lowered eps is not mistaken for convergence).
     double previous = std::numeric_limits<double>::infinity();
@@ -504,14 +758,21 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
       const double start = problem.evaluate(nullptr);
       objective.reset(x, start);
       double fx = start;
+      bool slow = false;
       try {
-        report.iterations += static_cast<std::size_t>(solver.minimize(objective, x, fx));
+        const int used = solver.minimize(objective, x, fx);
+        report.iterations += static_cast<std::size_t>(used);
+        slow = options.newton_after > 0 && used >= param.max_iterations;
       } catch (const std::runtime_error&) {
         // A line search that cannot progress ends this round; the best point is kept.
       }
       x = objective.best();
+      double energy = objective.best_energy();
+      if (slow) {
+        if (!newton) newton.emplace(problem);
+        energy = newton_descent(problem, *newton, options, x, report);
+      }
       problem.set_variables(x);
-      const double energy = objective.best_energy();
       ++report.outer_iterations;
       std::tie(dmin, bad) = problem.min_determinant();
       if (bad < best_bad) {

@@ -151,6 +151,33 @@ TEST_F(Cli, GeneratedSurfaceMeshesToItsBox) {
   EXPECT_EQ(j.at("quality").at("inverted").get<int>(), 0);
 }
 
+TEST_F(Cli, NewtonStepsAreOptInAndReported) {
+  const fs::path surface = dir_ / "box.obj", out = dir_ / "out.vtk", report = dir_ / "r.json";
+  ASSERT_EQ(run("generate box 4 4 4 -q -o " + surface.string()).code, 0);
+  {  // grade the spacing along x (x -> x^2 / 4): the harmonic start is no longer optimal
+    std::istringstream in(slurp(surface));
+    std::ostringstream graded;
+    for (std::string line; std::getline(in, line);) {
+      double x = 0.0, y = 0.0, z = 0.0;
+      if (std::sscanf(line.c_str(), "v %lf %lf %lf", &x, &y, &z) == 3)
+        graded << "v " << x * x / 4.0 << ' ' << y << ' ' << z << '\n';
+      else
+        graded << line << '\n';
+    }
+    std::ofstream(surface) << graded.str();
+  }
+  const std::string mesh =
+      "mesh " + surface.string() + " -o " + out.string() + " -q --report " + report.string();
+  ASSERT_EQ(run(mesh).code, 0);
+  EXPECT_EQ(nlohmann::json::parse(slurp(report)).at("position").at("newton_steps").get<int>(), 0);
+  const CliRun r = run(mesh + " --position-newton-after 1 --position-newton-steps 2");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(slurp(report));
+  EXPECT_GT(j.at("position").at("newton_steps").get<int>(), 0);
+  EXPECT_EQ(j.at("quality").at("inverted").get<int>(), 0);
+  EXPECT_EQ(run(mesh + " --position-newton-steps 0").code, 1);  // out of range: usage error
+}
+
 TEST_F(Cli, WeavingOptionsAreCheckedAndRecorded) {
   const fs::path out = dir_ / "l.vtk", report = dir_ / "r.json";
   const CliRun bad =

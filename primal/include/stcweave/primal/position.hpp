@@ -72,6 +72,15 @@ struct PositionOptions {
   int stall_iterations = 3;
   /// L-BFGS memory.
   int memory = 6;
+  /// When L-BFGS has used this many iterations in a round without meeting its tolerance,
+  /// the round goes on with projected Newton steps (0: never, the default). Each step
+  /// assembles the Hessian of every corner projected to positive semi-definite and solves
+  /// with Eigen's sparse LDLT (SimplicialLDLT). Off by default because it was measured
+  /// slower than L-BFGS alone on every mesh tried (docs/geometry.md): a factorisation of a
+  /// volume mesh costs far more than the L-BFGS iterations one step saves.
+  int newton_after = 0;
+  /// Projected Newton steps per round at most.
+  int max_newton_steps = 50;
   /// Subdivision depth of the Bézier validity certification (0: no subdivision).
   int certify_depth = 4;
   /// Threads evaluating the energy of meshes of 4096 hexes or more (0: one per hardware
@@ -93,6 +102,7 @@ struct PositionReport {
   bool harmonic_start = false;       ///< the harmonic placement was used as the start
   std::size_t outer_iterations = 0;  ///< rounds of (minimise, lower eps)
   std::size_t iterations = 0;        ///< L-BFGS iterations over all rounds
+  std::size_t newton_steps = 0;      ///< projected Newton steps over all rounds
   /// Energy of the starting positions and of the final ones, both with the last round's eps
   /// (so the two are comparable; a tangled start gives a large `energy_before`).
   double energy_before = 0.0;
@@ -126,6 +136,14 @@ struct PositionReport {
   /// The optimised positions had more inverted hexes than the start: the start was kept.
   bool kept_start = false;
 };
+
+/// The energy of one corner (see the file comment) for the edge matrix `edges` (columns
+/// e1 e2 e3, in units of h), with its gradient (9 entries, column after column) and the
+/// Hessian (9 x 9, same order, not projected) when asked. The kernel of `position_nodes`,
+/// exposed for tests and for users who build their own solvers.
+double winslow_corner_energy(const Eigen::Matrix3d& edges, double eps, double theta,
+                             Eigen::Matrix<double, 9, 1>* gradient = nullptr,
+                             Eigen::Matrix<double, 9, 9>* hessian = nullptr);
 
 /// The corners of `mesh` that cannot become positive whatever the free nodes do: corners
 /// whose four nodes are fixed and whose determinant is <= 0, and pairs of hexes with the
