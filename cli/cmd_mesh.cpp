@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -29,6 +30,7 @@ struct MeshArgs {
   std::string trace;
   bool check = false;
   bool keep_invalid = false;
+  bool fail_on_inverted = false;
   bool quiet = false;
   bool progress = false;
   // Positioning (untangling) of the interior nodes.
@@ -190,14 +192,18 @@ int run_mesh(const MeshArgs& a) {
   std::size_t blind_chords = 0;
   for (const auto& c : stc.chords) blind_chords += stc::is_blind(c) ? 1 : 0;
 
+  // With --fail-on-inverted a mesh that still has inverted hexes is unusable for the caller:
+  // like an invalid complex, it is written only with --keep-invalid.
+  const bool inverted_left = a.fail_on_inverted && r.quality.inverted > 0;
+  const bool write_mesh = !inverted_left || a.keep_invalid;
   const auto t1 = std::chrono::steady_clock::now();
-  primal::write_hex_mesh(r.mesh, a.output, out_format);
+  if (write_mesh) primal::write_hex_mesh(r.mesh, a.output, out_format);
   const double write_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
 
   nlohmann::json report;
   report["input"] = a.input;
-  report["output"] = a.output;
+  report["output"] = write_mesh ? nlohmann::json(a.output) : nlohmann::json(nullptr);
   report["rules"] = a.weave.rules;
   report["weave_options"] = weave_options_json(options.weave);
   report["quads"] = r.surface.surface.quads.size();
@@ -256,9 +262,25 @@ int run_mesh(const MeshArgs& a) {
       std::cout << " (harmonic placement, not untangled)\n";
     std::cout << "time       " << r.seconds.total() + stc_seconds + write_seconds << " s (weave "
               << r.seconds.weave << " s)\n";
-    std::cout << "output     " << a.output << "\n";
+    std::cout << "output     " << (write_mesh ? a.output : "not written (--fail-on-inverted)")
+              << "\n";
   }
-  return r.validation.valid ? kSuccess : kInternal;
+  if (!r.validation.valid) return kInternal;
+  if (inverted_left) {
+    std::string ids;
+    const std::vector<HexId>& bad = r.position.inverted;
+    for (std::size_t i = 0; i < std::min<std::size_t>(bad.size(), 5); ++i)
+      ids += (i > 0 ? ", " : "") + bad[i].str();
+    if (bad.size() > 5) ids += ", ...";
+    std::cerr << "stcweave: " << r.quality.inverted << " hexes are still inverted after untangling"
+              << (ids.empty() ? "" : " (" + ids + ")") << "; "
+              << (write_mesh ? "the mesh was written (--keep-invalid)"
+                             : "the mesh was not written (--fail-on-inverted); add --keep-invalid "
+                               "to write it anyway, or see the report's position.stop")
+              << "\n";
+    return kInverted;
+  }
+  return kSuccess;
 }
 
 }  // namespace
@@ -288,7 +310,11 @@ Action add_mesh_command(CLI::App& app) {
   sub->add_flag("--check", args->check,
                 "check the front invariants after every rule (slow, for debugging)");
   sub->add_flag("--keep-invalid", args->keep_invalid,
-                "write the mesh even when the woven complex is invalid (exit code 3 all the same)");
+                "write the mesh even when the woven complex is invalid (exit code 3 all the same) "
+                "or, with --fail-on-inverted, has inverted hexes (exit code 4 all the same)");
+  sub->add_flag("--fail-on-inverted", args->fail_on_inverted,
+                "exit with code 4, and do not write the mesh, when hexes are still inverted "
+                "(scaled Jacobian <= 0) after untangling");
   sub->add_flag("--no-untangle", args->no_untangle,
                 "keep the harmonic placement of the interior nodes (no untangling)");
   sub->add_option("--start", args->start,

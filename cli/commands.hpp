@@ -10,7 +10,13 @@
 namespace stcweave::cli {
 
 /// Exit codes, documented in README.md.
-enum ExitCode : int { kSuccess = 0, kUsage = 1, kInvalidInput = 2, kInternal = 3 };
+enum ExitCode : int {
+  kSuccess = 0,
+  kUsage = 1,
+  kInvalidInput = 2,
+  kInternal = 3,
+  kInverted = 4  ///< `mesh --fail-on-inverted`: hexes are still inverted after untangling
+};
 
 using Action = std::function<int()>;
 

@@ -1,4 +1,5 @@
 // The command-line program as a user meets it: exit codes, messages, outputs, determinism.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <array>
@@ -176,6 +177,42 @@ TEST_F(Cli, NewtonStepsAreOptInAndReported) {
   EXPECT_GT(j.at("position").at("newton_steps").get<int>(), 0);
   EXPECT_EQ(j.at("quality").at("inverted").get<int>(), 0);
   EXPECT_EQ(run(mesh + " --position-newton-steps 0").code, 1);  // out of range: usage error
+}
+
+TEST_F(Cli, FailOnInvertedExitsFourAndWritesNoMesh) {
+  // The 2x2x2 box with the centre of its top face pushed through the bottom: the interior
+  // node cannot be above the bottom centre and below the top one, so hexes stay inverted.
+  const fs::path surface = dir_ / "fold.obj", out = dir_ / "out.vtk", report = dir_ / "r.json";
+  ASSERT_EQ(run("generate box 2 2 2 -q -o " + surface.string()).code, 0);
+  {
+    std::string text = slurp(surface);
+    const std::string top_centre = "\nv 1 1 2\n";
+    const std::size_t at = text.find(top_centre);
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, top_centre.size(), "\nv 1 1 -0.5\n");
+    std::ofstream(surface) << text;
+  }
+  const std::string mesh = "mesh " + surface.string() + " -o " + out.string() +
+                           " --rules reliable -q --report " + report.string();
+  ASSERT_EQ(run(mesh).code, 0);  // without the flag: written, exit 0, quality says inverted
+  EXPECT_TRUE(fs::exists(out));
+  EXPECT_GT(nlohmann::json::parse(slurp(report)).at("quality").at("inverted").get<int>(), 0);
+  fs::remove(out);
+
+  const CliRun r = run(mesh + " --fail-on-inverted");
+  EXPECT_EQ(r.code, 4) << r.out;
+  EXPECT_THAT(r.out, ::testing::HasSubstr("still inverted after untangling"));
+  EXPECT_THAT(r.out, ::testing::HasSubstr("--keep-invalid"));
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_TRUE(nlohmann::json::parse(slurp(report)).at("output").is_null());
+
+  const CliRun kept = run(mesh + " --fail-on-inverted --keep-invalid");
+  EXPECT_EQ(kept.code, 4) << kept.out;
+  EXPECT_TRUE(fs::exists(out));
+
+  // A mesh with no inverted hex passes the flag.
+  ASSERT_EQ(run("generate box 2 2 2 -q -o " + surface.string()).code, 0);
+  EXPECT_EQ(run(mesh + " --fail-on-inverted").code, 0);
 }
 
 TEST_F(Cli, WeavingOptionsAreCheckedAndRecorded) {
