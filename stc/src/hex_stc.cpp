@@ -6,6 +6,7 @@
 #include <string>
 
 #include "stcweave/stc/errors.hpp"
+#include "union_find.hpp"
 
 /// How the STC is found, and why it is right.
 ///
@@ -63,27 +64,7 @@ void check_nodes(const HexComplex& complex) {
   }
 }
 
-class UnionFind {
- public:
-  explicit UnionFind(std::size_t n) : parent_(n) {
-    std::iota(parent_.begin(), parent_.end(), std::uint32_t{0});
-  }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent_[x] != x) {
-      parent_[x] = parent_[parent_[x]];
-      x = parent_[x];
-    }
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<std::uint32_t> parent_;
-};
+using detail::UnionFind;
 
 /// Faces matched by node set: for every hex face slot (6h+f) its face id; per face, its
 /// use count and its first two slots.

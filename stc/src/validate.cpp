@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "stcweave/stc/errors.hpp"
+#include "union_find.hpp"
 
 /// How the complex is validated, and why it is linear-ish.
 ///
@@ -64,27 +65,7 @@ constexpr std::array<std::array<int, 4>, 6> make_face_edges() {
 }
 constexpr auto kFaceEdges = make_face_edges();
 
-class UnionFind {
- public:
-  explicit UnionFind(std::size_t n) : parent_(n) {
-    std::iota(parent_.begin(), parent_.end(), std::uint32_t{0});
-  }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent_[x] != x) {
-      parent_[x] = parent_[parent_[x]];
-      x = parent_[x];
-    }
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<std::uint32_t> parent_;
-};
+using detail::UnionFind;
 
 /// `b` is a rotation of `a`.
 bool same_cycle(const Quad& a, const Quad& b) {
