@@ -31,19 +31,6 @@ constexpr std::array<int, 6> kFaceAxis = {2, 2, 1, 0, 1, 0};
 constexpr std::array<int, 6> kOppositeFace = {1, 0, 4, 5, 2, 3};
 constexpr std::array<std::array<int, 2>, 3> kAxisFaces = {{{5, 3}, {2, 4}, {0, 1}}};
 
-/// kLocalEdge[a][b]: the local edge (0..11) joining local nodes a and b, or -1.
-constexpr std::array<std::array<int, 8>, 8> make_local_edge_table() {
-  std::array<std::array<int, 8>, 8> t{};
-  for (auto& row : t) row.fill(-1);
-  for (int k = 0; k < 12; ++k) {
-    const auto [a, b] = kHexEdges[static_cast<std::size_t>(k)];
-    t[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)] = k;
-    t[static_cast<std::size_t>(b)][static_cast<std::size_t>(a)] = k;
-  }
-  return t;
-}
-constexpr auto kLocalEdge = make_local_edge_table();
-
 std::string face_str(const Quad& q) {
   return q[0].str() + " " + q[1].str() + " " + q[2].str() + " " + q[3].str();
 }
@@ -300,8 +287,8 @@ HexStc build_hex_stc(const HexComplex& complex) {
     const BoundaryPoint& bp = stc.boundary_points[q];
     const auto& local = kHexFaces[static_cast<std::size_t>(bp.face)];
     for (std::size_t s = 0; s < 4; ++s) {
-      const int k = kLocalEdge[static_cast<std::size_t>(local[s])]
-                              [static_cast<std::size_t>(local[(s + 1) % 4])];
+      const int k = kHexLocalEdge[static_cast<std::size_t>(local[s])]
+                                 [static_cast<std::size_t>(local[(s + 1) % 4])];
       const std::uint32_t e = edge_of_slot[12 * bp.hex.index() + static_cast<std::size_t>(k)];
       side_edge[4 * q + s] = e;
       const auto side = static_cast<std::int64_t>(4 * q + s);

@@ -24,18 +24,6 @@
 namespace stcweave::stc {
 namespace {
 
-constexpr std::array<std::array<int, 8>, 8> make_local_edge_table() {
-  std::array<std::array<int, 8>, 8> t{};
-  for (auto& row : t) row.fill(-1);
-  for (int k = 0; k < 12; ++k) {
-    const auto [a, b] = kHexEdges[static_cast<std::size_t>(k)];
-    t[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)] = k;
-    t[static_cast<std::size_t>(b)][static_cast<std::size_t>(a)] = k;
-  }
-  return t;
-}
-constexpr auto kLocalEdge = make_local_edge_table();
-
 /// kEdgeFaces[k]: the two faces of a hex containing its local edge k.
 constexpr std::array<std::array<int, 2>, 12> make_edge_faces() {
   std::array<std::array<int, 2>, 12> t{};
@@ -44,8 +32,8 @@ constexpr std::array<std::array<int, 2>, 12> make_edge_faces() {
     for (int s = 0; s < 4; ++s) {
       const auto& face = kHexFaces[static_cast<std::size_t>(f)];
       const int k =
-          kLocalEdge[static_cast<std::size_t>(face[static_cast<std::size_t>(s)])]
-                    [static_cast<std::size_t>(face[static_cast<std::size_t>((s + 1) % 4)])];
+          kHexLocalEdge[static_cast<std::size_t>(face[static_cast<std::size_t>(s)])]
+                       [static_cast<std::size_t>(face[static_cast<std::size_t>((s + 1) % 4)])];
       t[static_cast<std::size_t>(k)][static_cast<std::size_t>(n[static_cast<std::size_t>(k)]++)] =
           f;
     }
@@ -59,8 +47,8 @@ constexpr std::array<std::array<int, 4>, 6> make_face_edges() {
   std::array<std::array<int, 4>, 6> t{};
   for (std::size_t f = 0; f < 6; ++f)
     for (std::size_t s = 0; s < 4; ++s)
-      t[f][s] = kLocalEdge[static_cast<std::size_t>(kHexFaces[f][s])]
-                          [static_cast<std::size_t>(kHexFaces[f][(s + 1) % 4])];
+      t[f][s] = kHexLocalEdge[static_cast<std::size_t>(kHexFaces[f][s])]
+                             [static_cast<std::size_t>(kHexFaces[f][(s + 1) % 4])];
   return t;
 }
 constexpr auto kFaceEdges = make_face_edges();

@@ -37,6 +37,20 @@ inline constexpr std::array<std::array<int, 2>, 12> kHexEdges = {{{0, 1},
                                                                   {2, 6},
                                                                   {3, 7}}};
 
+/// kHexLocalEdge[a][b]: the local edge (index into kHexEdges) joining local nodes a and b of a
+/// hex, or -1 when they are not joined by an edge.
+inline constexpr std::array<std::array<int, 8>, 8> kHexLocalEdge = [] {
+  std::array<std::array<int, 8>, 8> t{};
+  for (auto& row : t)
+    for (int& v : row) v = -1;
+  for (int k = 0; k < 12; ++k) {
+    const auto& e = kHexEdges[static_cast<std::size_t>(k)];
+    t[static_cast<std::size_t>(e[0])][static_cast<std::size_t>(e[1])] = k;
+    t[static_cast<std::size_t>(e[1])][static_cast<std::size_t>(e[0])] = k;
+  }
+  return t;
+}();
+
 /// A quad surface: quads over nodes `0 .. num_nodes-1`. Nothing is assumed about it
 /// (closedness, manifoldness, orientation are what `diagnose` finds out); functions that
 /// need more say so in their `\pre`.
