@@ -22,8 +22,19 @@ namespace {
 
 using namespace stcweave;
 
-void report(benchmark::State& state, const primal::PositionReport& r, std::size_t hexes) {
-  state.counters["hexes"] = static_cast<double>(hexes);
+/// Times position_nodes on copies of `start` (the copy is not timed) and reports the last run's
+/// figures as counters.
+void measure(benchmark::State& state, const primal::HexMesh& start,
+             const primal::PositionOptions& options) {
+  primal::PositionReport r;
+  for (auto _ : state) {
+    state.PauseTiming();
+    primal::HexMesh mesh = start;
+    state.ResumeTiming();
+    r = primal::position_nodes(mesh, options);
+    benchmark::DoNotOptimize(mesh.points.data());
+  }
+  state.counters["hexes"] = static_cast<double>(start.complex.hexes.size());
   state.counters["inverted_before"] = static_cast<double>(r.inverted_before);
   state.counters["inverted_after"] = static_cast<double>(r.inverted_after);
   state.counters["min_sj"] = r.min_scaled_jacobian_after;
@@ -38,15 +49,7 @@ void BM_PositionScrambledBox(benchmark::State& state) {
   primal::PositionOptions options;
   options.fixed = test::boundary_nodes(start);
   test::scramble(start, options.fixed, 0.5, 1);
-  primal::PositionReport r;
-  for (auto _ : state) {
-    state.PauseTiming();
-    primal::HexMesh mesh = start;
-    state.ResumeTiming();
-    r = primal::position_nodes(mesh, options);
-    benchmark::DoNotOptimize(mesh.points.data());
-  }
-  report(state, r, start.complex.hexes.size());
+  measure(state, start, options);
 }
 BENCHMARK(BM_PositionScrambledBox)
     ->Arg(10)
@@ -63,15 +66,7 @@ void BM_PositionBentBox(benchmark::State& state) {
   options.num_fixed = test::boundary_first(start);
   options.start = primal::StartPosition::Harmonic;
   options.newton_after = static_cast<int>(state.range(1));
-  primal::PositionReport r;
-  for (auto _ : state) {
-    state.PauseTiming();
-    primal::HexMesh mesh = start;
-    state.ResumeTiming();
-    r = primal::position_nodes(mesh, options);
-    benchmark::DoNotOptimize(mesh.points.data());
-  }
-  report(state, r, start.complex.hexes.size());
+  measure(state, start, options);
 }
 BENCHMARK(BM_PositionBentBox)
     ->ArgNames({"n", "newton_after"})
