@@ -630,15 +630,12 @@ nlohmann::json to_json(const BenchResults& results) {
   j["wall_seconds"] = results.wall_seconds;
   nlohmann::json rows = nlohmann::json::array();
   for (const BenchRow& r : results.rows) {
-    nlohmann::json row;
+    // The probe's figures (input and reference), then the run's; keys are sorted on output.
+    nlohmann::json row = probe_to_json(r);
     row["input"] = r.input;
     row["rules"] = r.rules;
     row["status"] = std::string(to_string(r.status));
     row["reason"] = r.reason.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.reason);
-    row["quads"] = or_null(r.quads);
-    row["genus"] = or_null(r.genus);
-    row["loops"] = or_null(r.loops);
-    row["self_intersecting_loops"] = or_null(r.self_intersecting_loops);
     row["hexes"] = or_null(r.hexes);
     row["valid"] = or_null(r.valid);
     row["inverted"] = or_null(r.inverted);
@@ -649,11 +646,6 @@ nlohmann::json to_json(const BenchResults& results) {
     row["seconds"] = seconds;
     row["wall_seconds"] = r.wall_seconds;
     row["peak_memory_mb"] = or_null(r.peak_memory_mb);
-    row["reference_hexes"] = or_null(r.reference_hexes);
-    row["reference_min_scaled_jacobian"] = or_null(r.reference_min_scaled_jacobian);
-    row["reference_mean_scaled_jacobian"] = or_null(r.reference_mean_scaled_jacobian);
-    row["reference_error"] =
-        r.reference_error.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.reference_error);
     rows.push_back(std::move(row));
   }
   j["rows"] = rows;
