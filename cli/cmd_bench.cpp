@@ -149,11 +149,11 @@ void enter_child(const char* log, std::size_t memory_mb) {
   if (log_fd >= 0) dup2(log_fd, STDERR_FILENO);
 }
 
-/// Starts `args` (this program's argv) in a child; returns its pid, or -1 with errno set.
-pid_t spawn_exec(const std::vector<std::string>& args, const fs::path& log, std::size_t memory_mb) {
-  std::vector<char*> argv;
-  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
+/// Forks a child in its own process group, set up by `enter_child` (stderr to `log`, the
+/// memory limit), that runs `child`, which must not return. Returns the child's pid, or -1
+/// with errno set.
+template <typename Child>
+pid_t spawn(const fs::path& log, std::size_t memory_mb, const Child& child) {
   const std::string log_path = log.string();
   std::fflush(nullptr);
   const pid_t pid = fork();
@@ -162,10 +162,20 @@ pid_t spawn_exec(const std::vector<std::string>& args, const fs::path& log, std:
     return pid;
   }
   enter_child(log_path.c_str(), memory_mb);
-  execv("/proc/self/exe", argv.data());
-  const char msg[] = "stcweave: cannot start /proc/self/exe\n";
-  [[maybe_unused]] const ssize_t n = write(STDERR_FILENO, msg, sizeof msg - 1);
+  child();
   _exit(127);
+}
+
+/// Starts `args` (this program's argv) in a child; returns its pid, or -1 with errno set.
+pid_t spawn_exec(const std::vector<std::string>& args, const fs::path& log, std::size_t memory_mb) {
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  return spawn(log, memory_mb, [&argv] {
+    execv("/proc/self/exe", argv.data());
+    const char msg[] = "stcweave: cannot start /proc/self/exe\n";
+    [[maybe_unused]] const ssize_t n = write(STDERR_FILENO, msg, sizeof msg - 1);
+  });
 }
 
 /// The probe, run in a forked child: the diagnosis of `entry`'s input and the quality of its
@@ -206,15 +216,7 @@ pid_t spawn_exec(const std::vector<std::string>& args, const fs::path& log, std:
 }
 
 pid_t spawn_probe(const primal::ManifestEntry& entry, const Job& job, std::size_t memory_mb) {
-  const std::string log_path = job.log.string();
-  std::fflush(nullptr);
-  const pid_t pid = fork();
-  if (pid != 0) {
-    if (pid > 0) setpgid(pid, pid);
-    return pid;
-  }
-  enter_child(log_path.c_str(), memory_mb);
-  run_probe(entry, job.report);
+  return spawn(job.log, memory_mb, [&entry, &job] { run_probe(entry, job.report); });
 }
 
 /// Fills the outcome of a finished mesh run into `row`.
