@@ -21,22 +21,28 @@ weave::WeaveOptions options_for(std::int64_t rules) {
   return o;
 }
 
-void weave_box(benchmark::State& state) {
-  const int k = static_cast<int>(state.range(0));
-  const auto box = test::box_surface(k, k, k);
-  const weave::WeaveOptions options = options_for(state.range(1));
+/// Times weaving `s` with the rule set `rules` (0 reliable, 1 extended) and reports hexes and
+/// hexes per second.
+void measure(benchmark::State& state, const primal::SurfaceMesh& s, std::int64_t rules) {
+  const weave::WeaveOptions options = options_for(rules);
   const auto angles =
-      state.range(1) == 0 ? std::vector<std::array<double, 4>>{} : primal::dihedral_angles(box);
+      rules == 0 ? std::vector<std::array<double, 4>>{} : primal::dihedral_angles(s);
   std::size_t hexes = 0;
   for (auto _ : state) {
-    const auto r = weave::weave(box.surface, options, angles);
+    const auto r = weave::weave(s.surface, options, angles);
     hexes = r.complex.hexes.size();
     benchmark::DoNotOptimize(hexes);
   }
+  state.counters["quads"] = static_cast<double>(s.surface.quads.size());
   state.counters["hexes"] = static_cast<double>(hexes);
   state.counters["hexes_per_s"] =
       benchmark::Counter(static_cast<double>(hexes) * static_cast<double>(state.iterations()),
                          benchmark::Counter::kIsRate);
+}
+
+void weave_box(benchmark::State& state) {
+  const int k = static_cast<int>(state.range(0));
+  measure(state, test::box_surface(k, k, k), state.range(1));
 }
 BENCHMARK(weave_box)
     ->ArgNames({"k", "extended"})
@@ -51,20 +57,7 @@ void weave_shared(benchmark::State& state, const std::string& name) {
   }
   primal::SurfaceMesh s = primal::surface_of(primal::read_mesh(path));
   (void)primal::orient_outward(s);
-  const weave::WeaveOptions options = options_for(state.range(0));
-  const auto angles =
-      state.range(0) == 0 ? std::vector<std::array<double, 4>>{} : primal::dihedral_angles(s);
-  std::size_t hexes = 0;
-  for (auto _ : state) {
-    const auto r = weave::weave(s.surface, options, angles);
-    hexes = r.complex.hexes.size();
-    benchmark::DoNotOptimize(hexes);
-  }
-  state.counters["quads"] = static_cast<double>(s.surface.quads.size());
-  state.counters["hexes"] = static_cast<double>(hexes);
-  state.counters["hexes_per_s"] =
-      benchmark::Counter(static_cast<double>(hexes) * static_cast<double>(state.iterations()),
-                         benchmark::Counter::kIsRate);
+  measure(state, s, state.range(0));
 }
 BENCHMARK_CAPTURE(weave_shared, lblock_tf_medium, std::string("gmsh/lblock_tf_medium.obj"))
     ->ArgName("extended")
