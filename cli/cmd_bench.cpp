@@ -340,7 +340,7 @@ int run_bench(const BenchArgs& a) {
   results.manifest = a.manifest;
   results.rules = rules;
   results.jobs = a.jobs;
-  for (std::size_t i = 0; i < manifest.entries.size(); ++i)
+  for (std::size_t i = 0; i < manifest.entries.size(); ++i) {
     for (const std::string& r : rules) {
       const std::string stem = manifest.entries[i].file_stem + "." + r;
       Job job;
@@ -358,6 +358,7 @@ int run_bench(const BenchArgs& a) {
       row.reason = "not run: the bench was interrupted";
       results.rows.push_back(std::move(row));
     }
+  }
   const std::size_t mesh_runs = results.rows.size();
 
   struct sigaction handler {

@@ -45,8 +45,8 @@ stc::QuadSurface match_boundary(const primal::HexMesh& mesh, const primal::Surfa
     const Eigen::RowVector3d p = surface.points.row(i);
     const auto c = cell(p);
     double best = tol;
-    for (long long dx = -1; dx <= 1; ++dx)
-      for (long long dy = -1; dy <= 1; ++dy)
+    for (long long dx = -1; dx <= 1; ++dx) {
+      for (long long dy = -1; dy <= 1; ++dy) {
         for (long long dz = -1; dz <= 1; ++dz) {
           const auto it = grid.find({c[0] + dx, c[1] + dy, c[2] + dz});
           if (it == grid.end()) continue;
@@ -58,6 +58,8 @@ stc::QuadSurface match_boundary(const primal::HexMesh& mesh, const primal::Surfa
             }
           }
         }
+      }
+    }
   }
   stc::QuadSurface out;
   out.num_nodes = mesh.complex.num_nodes;
@@ -66,10 +68,11 @@ stc::QuadSurface match_boundary(const primal::HexMesh& mesh, const primal::Surfa
     for (std::size_t k = 0; k < 4; ++k) {
       const NodeId n = surface.surface.quads[q][k];
       quad[k] = map[n.index()];
-      if (!quad[k].is_valid())
+      if (!quad[k].is_valid()) {
         throw InvalidInput(name + ": node " + n.str() + " of boundary quad " + QuadId(q).str() +
                            " matches no node of the hex mesh (coordinates differ by more than "
                            "1e-9 of the bounding box): is this the right boundary?");
+      }
     }
     out.quads.push_back(quad);
   }
@@ -100,10 +103,11 @@ int run_check(const CheckArgs& a) {
     j["valid"] = v.valid;
     j["boundary_compared"] = v.boundary_compared;
     nlohmann::json violations = nlohmann::json::array();
-    for (const auto& viol : v.violations)
+    for (const auto& viol : v.violations) {
       violations.push_back({{"invariant", std::string(viol.name())},
                             {"count", viol.count},
                             {"examples", viol.examples}});
+    }
     j["violations"] = violations;
     j["euler_volume"] = v.euler_volume;
     j["euler_boundary"] = v.euler_boundary;

@@ -52,11 +52,13 @@ nlohmann::json position_json(const primal::PositionReport& p) {
   nlohmann::json inverted = nlohmann::json::array();
   for (const HexId h : p.inverted) inverted.push_back(h.str());
   nlohmann::json uncertified = nlohmann::json::array();
-  for (std::size_t h = 0; h < p.validity.size(); ++h)
-    if (p.validity[h] != primal::Validity::Valid)
+  for (std::size_t h = 0; h < p.validity.size(); ++h) {
+    if (p.validity[h] != primal::Validity::Valid) {
       uncertified.push_back(
           {{"hex", HexId(h).str()},
            {"bezier", p.validity[h] == primal::Validity::Invalid ? "invalid" : "undecided"}});
+    }
+  }
   return {{"free_nodes", p.free_nodes},
           {"rounds", p.outer_iterations},
           {"iterations", p.iterations},
@@ -92,7 +94,7 @@ nlohmann::json trace_json(const weave::TraceEvent& e) {
       j["event"] = "selection";
       j["reason"] = e.reason;
       nlohmann::json cands = nlohmann::json::array();
-      for (const auto& c : e.candidates)
+      for (const auto& c : e.candidates) {
         cands.push_back({{"loop", c.loop},
                          {"side", c.side == 0 ? "A" : "B"},
                          {"length", c.length},
@@ -106,6 +108,7 @@ nlohmann::json trace_json(const weave::TraceEvent& e) {
                          {"side_sharp", c.side_sharp},
                          {"nonconvex_on_side", c.nonconvex_on_side},
                          {"parallel_to", c.parallel_to}});
+      }
       j["decided_by"] = e.decided_by;
       j["filters"] = e.filters;
       j["chosen"] = cands.at(static_cast<std::size_t>(e.chosen));
@@ -148,10 +151,11 @@ int run_mesh(const MeshArgs& a) {
   options.weave.check = a.check;
   // The trace is streamed, so that a failed weave still leaves its trace behind.
   auto trace_text = std::make_shared<std::string>();
-  if (!a.trace.empty())
+  if (!a.trace.empty()) {
     options.weave.on_trace = [trace_text](const weave::TraceEvent& e) {
       *trace_text += trace_json(e).dump() + "\n";
     };
+  }
   options.keep_invalid = a.keep_invalid;
   options.untangle = !a.no_untangle;
   if (a.start != "layers" && a.start != "harmonic")
@@ -255,11 +259,12 @@ int run_mesh(const MeshArgs& a) {
               << "\n";
     std::cout << "quality    min scaled Jacobian " << r.quality.min_scaled_jacobian << ", mean "
               << r.quality.mean_scaled_jacobian << ", inverted " << r.quality.inverted;
-    if (options.untangle)
+    if (options.untangle) {
       std::cout << " (after untangling; " << r.position.inverted_before << " before; "
                 << r.position.stop << ")\n";
-    else
+    } else {
       std::cout << " (harmonic placement, not untangled)\n";
+    }
     std::cout << "time       " << r.seconds.total() + stc_seconds + write_seconds << " s (weave "
               << r.seconds.weave << " s)\n";
     std::cout << "output     " << (write_mesh ? a.output : "not written (--fail-on-inverted)")

@@ -68,10 +68,11 @@ int run_quality(const QualityArgs& a) {
       quantiles[key.str()] = q.quantiles[i];
     }
     nlohmann::json histogram = nlohmann::json::array();
-    for (std::size_t i = 0; i < q.histogram.size(); ++i)
+    for (std::size_t i = 0; i < q.histogram.size(); ++i) {
       histogram.push_back({{"from", -1.0 + 0.1 * static_cast<double>(i)},
                            {"to", -0.9 + 0.1 * static_cast<double>(i)},
                            {"count", q.histogram[i]}});
+    }
     nlohmann::json worst = nlohmann::json::array();
     for (const HexId h : q.worst)
       worst.push_back({{"hex", h.str()}, {"scaled_jacobian", q.per_hex[h.index()]}});
@@ -84,11 +85,12 @@ int run_quality(const QualityArgs& a) {
     j["min_jacobian"] = q.min_jacobian;
     j["max_edge_ratio"] = finite_or_null(q.max_edge_ratio);
     j["max_aspect_frobenius"] = finite_or_null(q.max_aspect_frobenius);
-    if (certified)
+    if (certified) {
       j["bezier"] = {{"depth", a.certify_depth},
                      {"valid", certified->valid},
                      {"invalid", certified->invalid},
                      {"uncertain", certified->uncertain}};
+    }
     std::cout << j.dump(1) << "\n";
     return kSuccess;
   }
@@ -117,10 +119,11 @@ int run_quality(const QualityArgs& a) {
   std::cout << "max edge ratio " << show(q.max_edge_ratio) << "\n";
   std::cout << "max aspect Frobenius (condition) " << show(q.max_aspect_frobenius)
             << (q.corner_inverted > 0 ? " (undefined on inverted corners)" : "") << "\n";
-  if (certified)
+  if (certified) {
     std::cout << "Bezier certification (depth " << a.certify_depth << "): valid "
               << certified->valid << ", invalid " << certified->invalid << ", undecided "
               << certified->uncertain << "\n";
+  }
   return kSuccess;
 }
 

@@ -47,11 +47,13 @@ nlohmann::json to_json(const primal::MeshFile& file, const stc::HexStc& stc) {
                       {"self_intersecting", sheet.self_intersecting}});
   }
   nlohmann::json blind = nlohmann::json::array();
-  for (std::size_t c = 0; c < stc.chords.size(); ++c)
-    if (stc::is_blind(stc.chords[c]))
+  for (std::size_t c = 0; c < stc.chords.size(); ++c) {
+    if (stc::is_blind(stc.chords[c])) {
       blind.push_back({{"id", ChordId(c).str()},
                        {"hexes", stc.chords[c].hexes.size()},
                        {"sheets", {stc.chords[c].sheets[0].str(), stc.chords[c].sheets[1].str()}}});
+    }
+  }
   return {{"file", file.path},
           {"format", file.format},
           {"hexes", stc.num_hexes()},
@@ -135,10 +137,11 @@ Action add_sheets_command(CLI::App& app) {
     const primal::Format format =
         options->format.empty() ? primal::Format::Auto : primal::format_from_name(options->format);
     const primal::MeshFile file = primal::read_mesh(options->file, format);
-    if (file.hexes.empty())
+    if (file.hexes.empty()) {
       throw InvalidInput("sheets needs a hex mesh; " + options->file + " has none (" +
                          std::to_string(file.quads.size()) +
                          " quads): give a volume mesh with hexahedra");
+    }
     stc::HexComplex complex;
     complex.hexes = file.hexes;
     complex.num_nodes = static_cast<std::size_t>(file.points.rows());

@@ -153,10 +153,11 @@ Manifest parse_manifest(std::istream& in, const fs::path& manifest_path) {
     const std::vector<std::string> fields =
         fields_of(hash == std::string::npos ? raw : raw.substr(0, hash));
     if (fields.empty()) continue;
-    if (fields.size() > 2)
+    if (fields.size() > 2) {
       throw InvalidInput(where + ":" + std::to_string(line) +
                          ": expected INPUT [REFERENCE], found " + std::to_string(fields.size()) +
                          " fields; paths cannot contain spaces, and a comment starts with #");
+    }
     const std::string at = where + ":" + std::to_string(line) + ": ";
     ManifestEntry e;
     e.line = line;
@@ -174,10 +175,11 @@ Manifest parse_manifest(std::istream& in, const fs::path& manifest_path) {
       key = input.generic_string();
     }
     const auto [it, fresh] = line_of.emplace(key, line);
-    if (!fresh)
+    if (!fresh) {
       throw InvalidInput(at + "input " + fields[0] + " is already listed on line " +
                          std::to_string(it->second) +
                          "; list each input once (--rules runs it with several rule sets)");
+    }
     if (fields.size() == 2) {
       const fs::path ref(fields[1]);
       if (fields[1].rfind(kGeneratePrefix, 0) == 0)
@@ -250,10 +252,11 @@ std::vector<std::string> parse_rules_list(std::string_view list) {
     const auto comma = list.find(',', start);
     const std::string name = trim(list.substr(
         start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
-    if (name.empty())
+    if (name.empty()) {
       throw InvalidInput("--rules '" + std::string(list) +
                          "': empty rule-set name; give names separated by commas, e.g. "
                          "reliable,extended");
+    }
     if (std::find(names.begin(), names.end(), name) != names.end())
       throw InvalidInput("--rules '" + std::string(list) + "': " + name + " is given twice");
     names.push_back(name);
@@ -289,11 +292,12 @@ std::optional<double> BenchRow::stage_seconds(std::string_view stage) const {
 
 std::string tidy_reason(std::string message, const std::string& input_path,
                         const std::string& name) {
-  for (const std::string_view prefix : {"invalid input: ", "failure: "})
+  for (const std::string_view prefix : {"invalid input: ", "failure: "}) {
     if (message.rfind(prefix, 0) == 0) {
       message.erase(0, prefix.size());
       break;
     }
+  }
   // Only whole occurrences: bounded by the message's ends, spaces, quotes, brackets or
   // punctuation, so that a short path is not replaced inside a word.
   const auto is_boundary = [](char c) {
@@ -447,10 +451,11 @@ std::optional<PowerLawFit> fit_stage_scaling(const std::vector<BenchRow>& rows,
 
 void fit_scaling(BenchResults& results) {
   results.scaling.clear();
-  for (const std::string& rules : results.rules)
+  for (const std::string& rules : results.rules) {
     for (const std::string_view stage : kScalingStages)
       if (const auto fit = fit_stage_scaling(results.rows, rules, stage))
         results.scaling.push_back({rules, std::string(stage), *fit});
+  }
 }
 
 std::string format_csv(const std::vector<BenchRow>& rows) {
@@ -613,10 +618,11 @@ std::string format_markdown(const BenchResults& results) {
                      [](const BenchRow* a, const BenchRow* b) { return *a->hexes < *b->hexes; });
     out << "\n| " << md_escape(rules)
         << ": input | hexes | weave s | total s |\n|---|--:|--:|--:|\n";
-    for (const BenchRow* r : points)
+    for (const BenchRow* r : points) {
       out << "| " << md_escape(r->input) << " | " << *r->hexes << " | "
           << md(r->stage_seconds("weave"), "%.3g") << " | " << md(r->stage_seconds("total"), "%.3g")
           << " |\n";
+    }
     out << "\n";
   }
   return out.str();
@@ -653,13 +659,14 @@ nlohmann::json to_json(const BenchResults& results) {
   for (const std::string& rules : results.rules)
     for (const std::string_view stage : kScalingStages)
       scaling[rules][std::string(stage)] = nullptr;
-  for (const ScalingFit& s : results.scaling)
+  for (const ScalingFit& s : results.scaling) {
     scaling[s.rules][s.stage] = {{"x", "hexes"},
                                  {"y", s.stage + " seconds"},
                                  {"exponent", s.fit.exponent},
                                  {"coefficient", s.fit.coefficient},
                                  {"r_squared", s.fit.r_squared},
                                  {"points", s.fit.points}};
+  }
   j["scaling"] = scaling;
   return j;
 }

@@ -63,10 +63,11 @@ void check_node_indices(const MeshFile& file) {
   for (std::size_t h = 0; h < file.hexes.size(); ++h)
     for (NodeId v : file.hexes[h])
       if (bad(v)) fail("hex " + HexId(h).str(), v);
-  if (file.hexes.empty())
+  if (file.hexes.empty()) {
     for (std::size_t q = 0; q < file.quads.size(); ++q)
       for (NodeId v : file.quads[q])
         if (bad(v)) fail("quad " + QuadId(q).str(), v);
+  }
 }
 
 /// The surface to diagnose, in file node numbering.
@@ -408,10 +409,11 @@ void require_weavable(const SurfaceDiagnosis& d) {
 
 OrientationReport orient_outward(SurfaceMesh& mesh) {
   stc::QuadSurface& surface = mesh.surface;
-  if (static_cast<std::size_t>(mesh.points.rows()) < surface.num_nodes)
+  if (static_cast<std::size_t>(mesh.points.rows()) < surface.num_nodes) {
     throw InvalidInput("orient_outward: the surface has " + std::to_string(surface.num_nodes) +
                        " nodes but only " + std::to_string(mesh.points.rows()) +
                        " points: give every node a position");
+  }
   const stc::SurfaceTopology topo = stc::surface_topology(surface);
   if (!topo.is_orientable()) {
     const stc::EdgeId e = topo.orientation_conflicts.front();

@@ -26,10 +26,11 @@ std::vector<std::array<double, 4>> dihedral_angles(const SurfaceMesh& mesh) {
     return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a.value())) << 32) |
            static_cast<std::uint32_t>(b.value());
   };
-  for (std::size_t q = 0; q < quads.size(); ++q)
+  for (std::size_t q = 0; q < quads.size(); ++q) {
     for (int i = 0; i < 4; ++i)
       directed[key(quads[q][static_cast<std::size_t>(i)],
                    quads[q][static_cast<std::size_t>((i + 1) % 4)])] = {q, i};
+  }
   for (std::size_t q = 0; q < quads.size(); ++q) {
     for (int i = 0; i < 4; ++i) {
       const NodeId a = quads[q][static_cast<std::size_t>(i)];

@@ -34,11 +34,13 @@ BarSections sections_of(BarShape shape) {
 }  // namespace
 
 HexMesh box_hexes(int a, int b, int c) {
-  for (int n : {a, b, c})
-    if (n < 1 || n > kMaxBoxSide)
+  for (int n : {a, b, c}) {
+    if (n < 1 || n > kMaxBoxSide) {
       throw InvalidInput("box " + std::to_string(a) + " x " + std::to_string(b) + " x " +
                          std::to_string(c) + ": every side must be between 1 and " +
                          std::to_string(kMaxBoxSide));
+    }
+  }
   const auto id = [&](int i, int j, int k) {
     return NodeId(static_cast<std::size_t>(i + (a + 1) * (j + (b + 1) * k)));
   };
@@ -46,18 +48,22 @@ HexMesh box_hexes(int a, int b, int c) {
   mesh.complex.num_nodes = static_cast<std::size_t>(a + 1) * static_cast<std::size_t>(b + 1) *
                            static_cast<std::size_t>(c + 1);
   mesh.points.resize(static_cast<Eigen::Index>(mesh.complex.num_nodes), 3);
-  for (int k = 0; k <= c; ++k)
+  for (int k = 0; k <= c; ++k) {
     for (int j = 0; j <= b; ++j)
       for (int i = 0; i <= a; ++i)
         mesh.points.row(static_cast<Eigen::Index>(id(i, j, k).index())) << i, j, k;
+  }
   mesh.complex.hexes.reserve(static_cast<std::size_t>(a) * static_cast<std::size_t>(b) *
                              static_cast<std::size_t>(c));
-  for (int k = 0; k < c; ++k)
-    for (int j = 0; j < b; ++j)
-      for (int i = 0; i < a; ++i)
+  for (int k = 0; k < c; ++k) {
+    for (int j = 0; j < b; ++j) {
+      for (int i = 0; i < a; ++i) {
         mesh.complex.hexes.push_back({id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k),
                                       id(i, j + 1, k), id(i, j, k + 1), id(i + 1, j, k + 1),
                                       id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)});
+      }
+    }
+  }
   return mesh;
 }
 

@@ -277,10 +277,11 @@ class Parser {
       fail(line, "count " + std::to_string(v) + " (" + std::string(what) +
                      ") exceeds the 2^31-1 elements stcweave can index; split the mesh");
     const auto needed = static_cast<unsigned long long>(v) * 2ULL * tokens_per_item;
-    if (tokens_per_item > 0 && needed > scan.bytes_left() + 1)
+    if (tokens_per_item > 0 && needed > scan.bytes_left() + 1) {
       fail(line, "count " + std::to_string(v) + " (" + std::string(what) +
                      ") is larger than the rest of the file can hold; the file is truncated "
                      "or the count is wrong");
+    }
   }
 
   /// The next token must be `word` (case-insensitive).
@@ -404,11 +405,12 @@ void resolve(const Parser& p, const RawCells& raw, const NodeNumbering& numberin
   const auto resolve_one = [&](long long node, std::size_t line, std::string_view kind,
                                long long label) {
     const long long r = numbering.row(node, n);
-    if (r < 0)
+    if (r < 0) {
       p.fail(line, std::string(kind) + " (" + std::string(element_word) + " " +
                        std::to_string(label) + ") uses node " + std::to_string(node) +
                        ", which does not exist (" + numbering.describe(n) +
                        "); fix the connectivity or the node list");
+    }
     return NodeId(static_cast<NodeId::value_type>(r));
   };
   for (const auto& o : raw.other_nodes) (void)resolve_one(o.node, o.line, "cell", o.label);
@@ -476,24 +478,28 @@ MeshFile read_obj(std::string_view text, const std::string& name) {
         std::string_view s = t.text;
         s = s.substr(0, s.find('/'));
         const auto v = to_integer(s);
-        if (!v)
+        if (!v) {
           p.fail(t.line, "face " + std::to_string(face_number) +
                              ": expected a vertex index, found " + in_quotes(t.text) +
                              "; fix the 'f' line");
-        if (*v == 0)
+        }
+        if (*v == 0) {
           p.fail(t.line, "face " + std::to_string(face_number) +
                              " uses vertex index 0, but OBJ indices start at 1 (or are negative, "
                              "relative to the last vertex); fix the 'f' line");
+        }
         face.push_back(*v > 0 ? *v : nv + *v + 1);  // 1-based
-        if (face.back() <= 0)
+        if (face.back() <= 0) {
           p.fail(t.line, "face " + std::to_string(face_number) + " uses relative index " +
                              std::to_string(*v) + " but only " + std::to_string(nv) +
                              " vertices precede it; fix the 'f' line");
+        }
       }
-      if (face.size() < 3)
+      if (face.size() < 3) {
         p.fail(key.line, "face " + std::to_string(face_number) + " has " +
                              std::to_string(face.size()) +
                              " vertices; a face needs at least 3: fix the 'f' line");
+      }
       if (face.size() == 4)
         raw.add_quad(face.data(), key.line, face_number);
       else if (face.size() == 3)
@@ -627,16 +633,18 @@ CellArray read_vtk_cells(Parser& p, const Token& keyword) {
       cells.offsets.push_back(p.integer(t, "offset"));
       const long long o = cells.offsets.back();
       if (o < 0 || o > b || (i == 0 && o != 0) ||
-          (i > 0 && o < cells.offsets[static_cast<std::size_t>(i) - 1]))
+          (i > 0 && o < cells.offsets[static_cast<std::size_t>(i) - 1])) {
         p.fail(t.line, "offset " + std::to_string(i) + " is " + std::to_string(o) +
                            ": offsets must start at 0, never decrease and stay within the " +
                            std::to_string(b) + " connectivity entries; fix the file");
+      }
     }
     if (cells.offsets.empty()) cells.offsets.push_back(0);
-    if (cells.offsets.back() != b)
+    if (cells.offsets.back() != b) {
       p.fail(keyword.line, "the last offset is " + std::to_string(cells.offsets.back()) + " but " +
                                what + " declares " + std::to_string(b) +
                                " connectivity entries; fix the file");
+    }
     p.expect("CONNECTIVITY");
     (void)p.token("the CONNECTIVITY type");
     cells.conn.reserve(static_cast<std::size_t>(b));
@@ -668,11 +676,12 @@ CellArray read_vtk_cells(Parser& p, const Token& keyword) {
     cells.offsets.push_back(static_cast<long long>(cells.conn.size()));
     cells.lines.push_back(t.line);
   }
-  if (static_cast<long long>(cells.conn.size()) + a != b)
+  if (static_cast<long long>(cells.conn.size()) + a != b) {
     p.fail(keyword.line, what + " declares " + std::to_string(b) + " integers but its " +
                              std::to_string(a) + " records hold " +
                              std::to_string(static_cast<long long>(cells.conn.size()) + a) +
                              "; fix the size on this line");
+  }
   return cells;
 }
 
@@ -713,10 +722,11 @@ MeshFile read_vtk(std::string_view text, const std::string& name) {
                   in_quotes(first) + "; check the file's format");
   (void)p.scan.rest_of_line();  // title
   const Token encoding = p.token("ASCII or BINARY");
-  if (iequals(encoding.text, "BINARY"))
+  if (iequals(encoding.text, "BINARY")) {
     p.fail(encoding.line,
            "binary legacy VTK is not supported; convert the file to ASCII (for example "
            "`meshio convert --ascii in.vtk out.vtk`, or save as ASCII from ParaView)");
+  }
   if (!iequals(encoding.text, "ASCII"))
     p.fail(encoding.line, "expected ASCII or BINARY on line 3, found " + in_quotes(encoding.text) +
                               "; fix the header");
@@ -733,10 +743,11 @@ MeshFile read_vtk(std::string_view text, const std::string& name) {
     if (iequals(key.text, "DATASET")) {
       const Token t = p.token("the DATASET type");
       dataset = lower(t.text);
-      if (dataset != "unstructured_grid" && dataset != "polydata")
+      if (dataset != "unstructured_grid" && dataset != "polydata") {
         p.fail(t.line, "DATASET " + std::string(t.text) +
                            " is not supported (only UNSTRUCTURED_GRID and POLYDATA hold "
                            "cells); convert the mesh to an unstructured grid");
+      }
     } else if (iequals(key.text, "POINTS")) {
       if (have_points) p.fail(key.line, "a second POINTS section; fix the file");
       const std::size_t n = p.count("the POINTS count", 3);
@@ -802,10 +813,11 @@ MeshFile read_vtk(std::string_view text, const std::string& name) {
       out.notes.push_back("ignored a CELLS section in a POLYDATA file (line " +
                           std::to_string(cells->header_line) + ")");
   } else if (cells) {
-    if (types.size() != cells->size())
+    if (types.size() != cells->size()) {
       p.fail(types_line != 0 ? types_line : cells->header_line,
              "CELL_TYPES lists " + std::to_string(types.size()) + " types but CELLS has " +
                  std::to_string(cells->size()) + " cells; fix the file");
+    }
     std::size_t mislabelled = 0;
     std::size_t first_mislabelled = 0;
     std::size_t voxels = 0;
@@ -874,17 +886,20 @@ MeshFile read_vtk(std::string_view text, const std::string& name) {
           kind = CellKind::Other;
           break;
       }
-      if (k < need)
+      if (k < need) {
         p.fail(cells->lines[c], "cell " + std::to_string(c) + " of type " + std::to_string(type) +
                                     " has " + std::to_string(k) + " points, at least " +
                                     std::to_string(need) +
                                     " expected; fix the CELLS or CELL_TYPES");
-      for (std::size_t j = 0; j < k; ++j)
-        if (n[j] < 0 || n[j] >= out.points.rows())
+      }
+      for (std::size_t j = 0; j < k; ++j) {
+        if (n[j] < 0 || n[j] >= out.points.rows()) {
           p.fail(cells->lines[c],
                  "cell " + std::to_string(c) + " uses point " + std::to_string(n[j]) +
                      ", which does not exist (valid indices are 0 .. " +
                      std::to_string(out.points.rows() - 1) + "); fix the CELLS or POINTS");
+        }
+      }
       switch (kind) {
         case CellKind::Ignore:
           break;
@@ -917,11 +932,12 @@ MeshFile read_vtk(std::string_view text, const std::string& name) {
           break;
       }
     }
-    if (mislabelled > 0)
+    if (mislabelled > 0) {
       out.notes.push_back(std::to_string(mislabelled) +
                           " cell(s) labelled VTK_TETRA (10) have 8 points and were read as "
                           "hexahedra (VTK_HEXAHEDRON is 12), first at line " +
                           std::to_string(first_mislabelled));
+    }
     if (voxels > 0)
       out.notes.push_back(std::to_string(voxels) +
                           " VTK_VOXEL (11) cell(s) reordered to hexahedron order");
@@ -1006,11 +1022,12 @@ MeshFile read_vtu(std::string_view text, const std::string& name) {
         continue;
       }
       const std::string_view fmt = xml_attribute(tag, "format");
-      if (fmt != "ascii")
+      if (fmt != "ascii") {
         p.fail(line_at(pos), "DataArray " + in_quotes(xml_attribute(tag, "Name")) +
                                  " is stored as " + in_quotes(fmt) +
                                  "; only ASCII VTU is supported: save the file with ASCII data "
                                  "(ParaView: Data Mode = Ascii)");
+      }
       const std::size_t data_end = text.find('<', tag_end);
       if (data_end == std::string_view::npos) p.fail_end("a DataArray");
       p.scan.seek(tag_end + 1);
@@ -1027,10 +1044,11 @@ MeshFile read_vtu(std::string_view text, const std::string& name) {
                              std::to_string(expected) + " values; fix the file");
         store(n++, Token{v, t.line});
       }
-      if (n != expected)
+      if (n != expected) {
         p.fail(line_at(pos), "DataArray " + in_quotes(xml_attribute(tag, "Name")) + " has " +
                                  std::to_string(n) + " values, " + std::to_string(expected) +
                                  " expected; fix the file");
+      }
       return;
     }
   };
@@ -1054,10 +1072,11 @@ MeshFile read_vtu(std::string_view text, const std::string& name) {
   read_array("Cells", "types", cells,
              [&](std::size_t i, Token t) { types[i] = p.integer(t, "cell type"); });
   const long long total = offsets.empty() ? 0 : offsets.back();
-  for (std::size_t i = 0; i < cells; ++i)
+  for (std::size_t i = 0; i < cells; ++i) {
     if (offsets[i] < (i == 0 ? 0 : offsets[i - 1]) || offsets[i] > total)
       p.fail(line_at(piece), "offset " + std::to_string(i) + " (" + std::to_string(offsets[i]) +
                                  ") is out of order; fix the offsets array");
+  }
   restart();  // the count is checked against the whole file
   p.check_count(total, line_at(piece), "connectivity entries", 1);
   std::vector<long long> conn(static_cast<std::size_t>(total));
@@ -1094,15 +1113,17 @@ MeshFile read_vtu(std::string_view text, const std::string& name) {
     } else {
       ++out.other_cells;
     }
-    for (std::size_t j = 0; j < k; ++j)
+    for (std::size_t j = 0; j < k; ++j) {
       if (conn[b + j] < 0 || conn[b + j] >= out.points.rows())
         p.fail(line, "cell " + std::to_string(c) + " uses point " + std::to_string(conn[b + j]) +
                          ", which does not exist; fix the connectivity");
+    }
   }
-  if (mislabelled > 0)
+  if (mislabelled > 0) {
     out.notes.push_back(std::to_string(mislabelled) +
                         " cell(s) labelled VTK_TETRA (10) have 8 points and were read as "
                         "hexahedra (VTK_HEXAHEDRON is 12)");
+  }
   resolve(p, raw, NodeNumbering::dense(0), "cell", out);
   return out;
 }
@@ -1284,10 +1305,11 @@ MeshFile read_msh(std::string_view text, const std::string& name) {
       const Token version = p.token("the MSH version");
       const long long file_type = p.integer("the MSH file type");
       (void)p.integer("the MSH data size");
-      if (file_type != 0)
+      if (file_type != 0) {
         p.fail(version.line,
                "binary MSH files are not supported; save the mesh as ASCII "
                "(gmsh -save -format msh41 with Mesh.Binary = 0)");
+      }
       if (version.text == "4.1") {
         major = 4;
       } else if (istarts_with(version.text, "2")) {
@@ -1343,10 +1365,11 @@ MeshFile read_msh(std::string_view text, const std::string& name) {
           }
           read += in_block;
         }
-        if (read != n)
+        if (read != n) {
           p.fail(section.line, "$Nodes announces " + std::to_string(n) +
                                    " nodes but its blocks hold " + std::to_string(read) +
                                    "; fix the file");
+        }
       }
       expect_end("Nodes");
     } else if (section.text == "$Elements") {
@@ -1382,10 +1405,11 @@ MeshFile read_msh(std::string_view text, const std::string& name) {
           }
           read += in_block;
         }
-        if (read != n)
+        if (read != n) {
           p.fail(section.line, "$Elements announces " + std::to_string(n) +
                                    " elements but its blocks hold " + std::to_string(read) +
                                    "; fix the file");
+        }
       }
       expect_end("Elements");
     } else {
@@ -1504,10 +1528,11 @@ MeshFile read_medit(std::string_view text, const std::string& name) {
     } else {
       const auto* skip =
           std::find_if(kSkip.begin(), kSkip.end(), [&](const Skip& s) { return s.word == k; });
-      if (skip == kSkip.end())
+      if (skip == kSkip.end()) {
         p.fail(key.line, "unknown MEDIT keyword " + in_quotes(k) +
                              " (expected Vertices, Quadrilaterals, Hexahedra, Triangles, "
                              "Tetrahedra, ... or End); fix the file");
+      }
       const auto per = static_cast<std::size_t>(skip->ints) +
                        static_cast<std::size_t>(skip->reals < 0 ? dim : skip->reals);
       const std::size_t n = p.count("the number of " + std::string(k), per);
@@ -1618,10 +1643,11 @@ MeshFile read_mfem(std::string_view text, const std::string& name) {
                     static_cast<std::size_t>(sdim));
       out.points.resize(static_cast<Eigen::Index>(num_vertices), 3);
       out.points.setZero();
-      for (std::size_t i = 0; i < num_vertices; ++i)
+      for (std::size_t i = 0; i < num_vertices; ++i) {
         for (long long c = 0; c < sdim; ++c)
           out.points(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(c)) =
               p.real("vertex coordinates");
+      }
     } else if (key.text == "nodes") {
       if (!have_vertices)
         p.fail(key.line, "'nodes' before 'vertices': the vertex count is unknown; fix the file");
@@ -1649,10 +1675,11 @@ MeshFile read_mfem(std::string_view text, const std::string& name) {
       }
       const bool h1 = istarts_with(collection, "H1_") || istarts_with(collection, "H1Pos_") ||
                       collection == "Linear" || collection == "Quadratic" || collection == "Cubic";
-      if (!h1)
+      if (!h1) {
         p.fail(collection_line, "curved MFEM mesh with node space " + in_quotes(collection) +
                                     ": only H1 (continuous) nodes are supported, where the "
                                     "first dofs are the vertices; project the nodes to H1");
+      }
       if (vdim < 1 || vdim > 3)
         p.fail(collection_line, "VDim " + std::to_string(vdim) + " is not 1, 2 or 3; fix the file");
       out.points.resize(static_cast<Eigen::Index>(num_vertices), 3);
@@ -1660,10 +1687,11 @@ MeshFile read_mfem(std::string_view text, const std::string& name) {
       const auto v = static_cast<std::size_t>(vdim);
       if (ordering == 1) {  // byVDIM: x y z of dof 0, dof 1, ...
         p.check_count(static_cast<long long>(num_vertices), key.line, "vertex dofs", v);
-        for (std::size_t i = 0; i < num_vertices; ++i)
+        for (std::size_t i = 0; i < num_vertices; ++i) {
           for (std::size_t c = 0; c < v; ++c)
             out.points(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(c)) =
                 p.real("node coordinates");
+        }
         // The remaining dofs (edge, face, interior) are not needed.
         while (!p.scan.at_end()) {
           const Token t = p.scan.peek();
@@ -1681,15 +1709,17 @@ MeshFile read_mfem(std::string_view text, const std::string& name) {
           values.push_back(*value);
         }
         const std::size_t ndofs = values.size() / v;
-        if (values.size() % v != 0 || ndofs < num_vertices)
+        if (values.size() % v != 0 || ndofs < num_vertices) {
           p.fail(key.line, "the nodes hold " + std::to_string(values.size()) +
                                " values, not a multiple of VDim " + std::to_string(vdim) +
                                " covering the " + std::to_string(num_vertices) +
                                " vertices; the file looks truncated");
-        for (std::size_t i = 0; i < num_vertices; ++i)
+        }
+        for (std::size_t i = 0; i < num_vertices; ++i) {
           for (std::size_t c = 0; c < v; ++c)
             out.points(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(c)) =
                 values[c * ndofs + i];
+        }
       } else {
         p.fail(key.line, "MFEM nodes without 'Ordering: 0' or 'Ordering: 1'; fix the file");
       }
@@ -1701,10 +1731,11 @@ MeshFile read_mfem(std::string_view text, const std::string& name) {
   }
   if (!have_elements) p.fail(p.scan.line(), "no 'elements' section; the file holds no mesh");
   if (!have_vertices) p.fail(p.scan.line(), "no 'vertices' section; the file holds no mesh");
-  if (out.points.rows() != static_cast<Eigen::Index>(num_vertices))
+  if (out.points.rows() != static_cast<Eigen::Index>(num_vertices)) {
     p.fail(vertices_line,
            "the vertices have no coordinates (neither a space dimension and "
            "coordinates nor a 'nodes' section); fix the file");
+  }
   if (dim == 0) p.fail(1, "no 'dimension' section; fix the file");
   resolve(p, raw, NodeNumbering::dense(0), "element", out);
   return out;

@@ -60,13 +60,16 @@ class Out {
 template <class Cells>
 void check_nodes(const Cells& cells, const Points& points, std::string_view kind,
                  const std::filesystem::path& path) {
-  for (std::size_t c = 0; c < cells.size(); ++c)
-    for (const NodeId v : cells[c])
-      if (!v.is_valid() || v.value() >= points.rows())
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    for (const NodeId v : cells[c]) {
+      if (!v.is_valid() || v.value() >= points.rows()) {
         throw InvalidInput("cannot write " + path.string() + ": " + std::string(kind) + " " +
                            std::to_string(c) + " uses node " + v.str() + " but the mesh has " +
                            std::to_string(points.rows()) +
                            " points; the mesh is inconsistent (a bug in the caller)");
+      }
+    }
+  }
 }
 
 /// Writes `text` to `path` through a temporary file in the same folder + rename.

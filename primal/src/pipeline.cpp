@@ -35,22 +35,25 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
   require_weavable(r.diagnosis);
   for (std::size_t c = 0; c < r.diagnosis.genus_per_component.size(); ++c) {
     const auto& g = r.diagnosis.genus_per_component[c];
-    if (g && *g > 0)
+    if (g && *g > 0) {
       throw Unsupported("component " + std::to_string(c) + " of " + file.path + " has genus " +
                         std::to_string(*g) +
                         ": surfaces with handles (genus > 0) are not supported yet; only "
                         "genus-0 shells can be woven");
+    }
   }
   r.surface = surface_of(file, &r.file_nodes);
   r.seconds.diagnose = clock.lap();
 
   stage("orient");
   r.orientation = orient_outward(r.surface);
-  for (std::size_t c = 0; c < r.orientation.nesting_depth.size(); ++c)
-    if (r.orientation.nesting_depth[c] > 0)
+  for (std::size_t c = 0; c < r.orientation.nesting_depth.size(); ++c) {
+    if (r.orientation.nesting_depth[c] > 0) {
       throw Unsupported("component " + std::to_string(c) + " of " + file.path +
                         " lies inside another component (nested shells, e.g. a hollow ball): "
                         "not supported yet; mesh each shell's solid separately");
+    }
+  }
   r.seconds.orient = clock.lap();
 
   stage("weave");

@@ -151,10 +151,11 @@ class Problem {
     for (const stc::Hex& h : mesh.complex.hexes) {
       HexNodes n{};
       for (std::size_t i = 0; i < 8; ++i) {
-        if (!h[i].is_valid() || h[i].index() >= num_nodes_)
+        if (!h[i].is_valid() || h[i].index() >= num_nodes_) {
           throw InvalidInput("position_nodes: hex h" + std::to_string(hexes_.size()) +
                              " names node " + h[i].str() + " out of range (" +
                              std::to_string(num_nodes_) + " nodes)");
+        }
         n[i] = h[i].value();
       }
       hexes_.push_back(n);
@@ -164,26 +165,29 @@ class Problem {
     std::vector<bool> used(num_nodes_, false);
     for (const HexNodes& n : hexes_)
       for (std::int32_t v : n) used[static_cast<std::size_t>(v)] = true;
-    for (std::size_t v = 0; v < num_nodes_; ++v)
+    for (std::size_t v = 0; v < num_nodes_; ++v) {
       if (!fixed[v] && used[v]) {
         slot_[v] = static_cast<std::int32_t>(free_.size());
         free_.push_back(static_cast<std::int32_t>(v));
       }
+    }
     // Node -> (hex, local) incidences of the free nodes, in increasing (hex, local) order,
     // so that gradients are gathered in a fixed order.
     offsets_.assign(free_.size() + 1, 0);
-    for (const HexNodes& n : hexes_)
+    for (const HexNodes& n : hexes_) {
       for (std::int32_t v : n)
         if (slot_[static_cast<std::size_t>(v)] >= 0)
           ++offsets_[slot_[static_cast<std::size_t>(v)] + 1];
+    }
     for (std::size_t i = 0; i < free_.size(); ++i) offsets_[i + 1] += offsets_[i];
     incidences_.resize(offsets_.back());
     std::vector<std::size_t> fill(offsets_.begin(), offsets_.end() - 1);
-    for (std::size_t hx = 0; hx < hexes_.size(); ++hx)
+    for (std::size_t hx = 0; hx < hexes_.size(); ++hx) {
       for (std::size_t i = 0; i < 8; ++i) {
         const std::int32_t s = slot_[static_cast<std::size_t>(hexes_[hx][i])];
         if (s >= 0) incidences_[fill[static_cast<std::size_t>(s)]++] = hx * 8 + i;
       }
+    }
     // Scale: the edge of a cube of the mean hex volume. The total volume only depends on
     // the boundary faces (interior faces cancel), so h does not change while optimising.
     centre_ = mesh.points.colwise().mean().transpose();
@@ -242,7 +246,7 @@ class Problem {
   [[nodiscard]] std::pair<double, std::size_t> min_determinant() const {
     double best = std::numeric_limits<double>::infinity();
     std::size_t bad = 0;
-    for (std::size_t hx = 0; hx < hexes_.size(); ++hx)
+    for (std::size_t hx = 0; hx < hexes_.size(); ++hx) {
       for (std::size_t k = 0; k < 8; ++k) {
         if ((active_[hx] & (1u << k)) == 0) continue;
         const std::array<Eigen::Vector3d, 3> e = edges(hx, k);
@@ -250,6 +254,7 @@ class Problem {
         best = std::min(best, d);
         if (d <= 0.0) ++bad;
       }
+    }
     return {best, bad};
   }
 
@@ -266,11 +271,12 @@ class Problem {
     for (double e : hex_energy_) total += e;
     if (grad != nullptr) {
       grad->setZero(static_cast<Eigen::Index>(3 * free_.size()));
-      for (std::size_t i = 0; i < free_.size(); ++i)
+      for (std::size_t i = 0; i < free_.size(); ++i) {
         for (std::size_t q = offsets_[i]; q < offsets_[i + 1]; ++q) {
           const double* hg = hex_grad_.data() + 3 * incidences_[q];
           for (int a = 0; a < 3; ++a) (*grad)(static_cast<Eigen::Index>(3 * i) + a) += hg[a];
         }
+      }
     }
     return std::isfinite(total) ? total : std::numeric_limits<double>::infinity();
   }
@@ -303,10 +309,11 @@ class Problem {
       lifted.block<3, 9>(0, 3) = -col_sum.transpose();
       lifted.block<3, 3>(0, 0) =
           col_sum.block<3, 3>(0, 0) + col_sum.block<3, 3>(3, 0) + col_sum.block<3, 3>(6, 0);
-      for (std::size_t a = 0; a < 4; ++a)
+      for (std::size_t a = 0; a < 4; ++a) {
         for (std::size_t b = 0; b < 4; ++b)
           out.block<3, 3>(3 * Eigen::Index{c[a]}, 3 * Eigen::Index{c[b]}) += lifted.block<3, 3>(
               static_cast<Eigen::Index>(3 * a), static_cast<Eigen::Index>(3 * b));
+      }
     }
   }
 
@@ -385,8 +392,8 @@ class NewtonSolver {
   explicit NewtonSolver(const Problem& problem) {
     const auto n = static_cast<Eigen::Index>(3 * problem.num_free());
     std::vector<Eigen::Triplet<double>> triplets;
-    for (const HexNodes& h : problem.hexes())
-      for (std::size_t a = 0; a < 8; ++a)
+    for (const HexNodes& h : problem.hexes()) {
+      for (std::size_t a = 0; a < 8; ++a) {
         for (std::size_t b = 0; b < 8; ++b) {
           const std::int32_t sa = problem.slot(h[a]);
           const std::int32_t sb = problem.slot(h[b]);
@@ -395,6 +402,8 @@ class NewtonSolver {
             for (int j = 0; j < 3; ++j)
               if (sa > sb || i >= j) triplets.emplace_back(3 * sa + i, 3 * sb + j, 0.0);
         }
+      }
+    }
     matrix_.resize(n, n);
     matrix_.setFromTriplets(triplets.begin(), triplets.end());
     matrix_.makeCompressed();
@@ -441,7 +450,7 @@ class NewtonSolver {
 
   void scatter(const Problem& problem, const HexNodes& h,
                const Eigen::Matrix<double, 24, 24>& block) {
-    for (std::size_t a = 0; a < 8; ++a)
+    for (std::size_t a = 0; a < 8; ++a) {
       for (std::size_t b = 0; b < 8; ++b) {
         const std::int32_t sa = problem.slot(h[a]);
         const std::int32_t sb = problem.slot(h[b]);
@@ -460,6 +469,7 @@ class NewtonSolver {
                 block(static_cast<Eigen::Index>(3 * a) + i, static_cast<Eigen::Index>(3 * b) + j);
         }
       }
+    }
   }
 
   Matrix matrix_;
@@ -536,10 +546,11 @@ Points harmonic_start(const HexMesh& mesh, const std::vector<bool>& fixed) {
   Eigen::SparseMatrix<double> laplacian(free, free);
   laplacian.setFromTriplets(triplets.begin(), triplets.end());
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(laplacian);
-  if (solver.info() != Eigen::Success)
+  if (solver.info() != Eigen::Success) {
     throw SolverError(
         "position_nodes: the harmonic start cannot be factorised: some free nodes are not "
         "connected by hex edges to any fixed node");
+  }
   const Eigen::MatrixX3d x = solver.solve(rhs);
   if (solver.info() != Eigen::Success || !x.allFinite())
     throw SolverError("position_nodes: the harmonic start failed to solve");
@@ -648,7 +659,7 @@ std::vector<ImpossibleCorner> impossible_corners(const HexMesh& mesh,
   for (std::size_t first = 0, last = 0; first < seen.size(); first = last) {
     while (last < seen.size() && seen[last].key == seen[first].key) ++last;
     const auto& key = seen[first].key;
-    for (std::size_t i = first; i < last; ++i)
+    for (std::size_t i = first; i < last; ++i) {
       for (std::size_t j = i + 1; j < last; ++j) {
         if ((seen[i].hex_parity & 1u) == (seen[j].hex_parity & 1u)) continue;
         const HexId a(seen[i].hex_parity / 2), b(seen[j].hex_parity / 2);
@@ -660,6 +671,7 @@ std::vector<ImpossibleCorner> impossible_corners(const HexMesh& mesh,
         out.push_back({a, seen[i].corner, b, msg});
         out.push_back({b, seen[j].corner, a, msg});
       }
+    }
   }
   std::sort(out.begin(), out.end(), [](const ImpossibleCorner& x, const ImpossibleCorner& y) {
     return std::pair(x.hex, x.corner) < std::pair(y.hex, y.corner);
@@ -676,10 +688,11 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   PositionReport report;
   const std::size_t n = static_cast<std::size_t>(mesh.points.rows());
-  if (!options.fixed.empty() && options.fixed.size() != n)
+  if (!options.fixed.empty() && options.fixed.size() != n) {
     throw InvalidInput("position_nodes: the fixed mask has " +
                        std::to_string(options.fixed.size()) + " entries for " + std::to_string(n) +
                        " nodes");
+  }
   std::vector<bool> fixed(n, false);
   for (std::size_t v = 0; v < n; ++v)
     fixed[v] = v < options.num_fixed || (!options.fixed.empty() && options.fixed[v]);
@@ -714,10 +727,11 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
   Problem problem(mesh, fixed, options.theta);
   problem.set_threads(options.threads > 0 ? static_cast<std::size_t>(options.threads)
                                           : std::max(1u, std::thread::hardware_concurrency()));
-  if (!mesh.complex.hexes.empty() && !(problem.volume() > 0.0))
+  if (!mesh.complex.hexes.empty() && !(problem.volume() > 0.0)) {
     throw InvalidInput("position_nodes: the hexes enclose a total volume of " +
                        std::to_string(problem.volume()) +
                        " <= 0: their node order is mirrored (swap nodes 1-3 and 5-7)");
+  }
   report.free_nodes = problem.num_free();
   report.impossible = impossible_corners(mesh, fixed);
   for (const ImpossibleCorner& c : report.impossible) problem.deactivate(c.hex.index(), c.corner);

@@ -65,13 +65,14 @@ QuadSurface boundary_surface(const HexComplex& complex, std::vector<HexFaceRef>*
 std::vector<std::pair<std::int32_t, std::int32_t>> unique_edges(const HexComplex& complex) {
   std::vector<std::pair<std::int32_t, std::int32_t>> edges;
   edges.reserve(complex.hexes.size() * 12);
-  for (const Hex& h : complex.hexes)
+  for (const Hex& h : complex.hexes) {
     for (const auto& e : kHexEdges) {
       std::int32_t a = h[static_cast<std::size_t>(e[0])].value();
       std::int32_t b = h[static_cast<std::size_t>(e[1])].value();
       if (a > b) std::swap(a, b);
       edges.emplace_back(a, b);
     }
+  }
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   return edges;

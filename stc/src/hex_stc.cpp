@@ -39,14 +39,16 @@ void check_nodes(const HexComplex& complex) {
   for (std::size_t h = 0; h < complex.hexes.size(); ++h) {
     const Hex& hex = complex.hexes[h];
     for (std::size_t i = 0; i < 8; ++i) {
-      if (!hex[i].is_valid() || hex[i].index() >= complex.num_nodes)
+      if (!hex[i].is_valid() || hex[i].index() >= complex.num_nodes) {
         throw InvalidInput(HexId(h).str() + " has node " + hex[i].str() +
                            " out of range (the complex has " + std::to_string(complex.num_nodes) +
                            " nodes)");
-      for (std::size_t j = 0; j < i; ++j)
+      }
+      for (std::size_t j = 0; j < i; ++j) {
         if (hex[i] == hex[j])
           throw InvalidInput(HexId(h).str() + " has node " + hex[i].str() +
                              " twice (a hex needs 8 distinct nodes)");
+      }
     }
   }
 }

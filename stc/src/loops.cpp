@@ -23,11 +23,12 @@ class SideFinder {
     for (std::size_t v = 0; v < surface.num_nodes; ++v) first_[v + 1] += first_[v];
     incident_.resize(first_.back());
     std::vector<std::size_t> next(first_.begin(), first_.end() - 1);
-    for (std::size_t q = 0; q < surface.num_quads(); ++q)
+    for (std::size_t q = 0; q < surface.num_quads(); ++q) {
       for (NodeId v : surface.quads[q]) {
         // A degenerate quad repeating v is listed twice; harmless for a traversal.
         incident_[next[v.index()]++] = QuadId(q);
       }
+    }
   }
 
   /// See `loop_sides`.

@@ -45,10 +45,11 @@ constexpr auto kEdgeFaces = make_edge_faces();
 /// kFaceEdges[f]: the four local edges of face f.
 constexpr std::array<std::array<int, 4>, 6> make_face_edges() {
   std::array<std::array<int, 4>, 6> t{};
-  for (std::size_t f = 0; f < 6; ++f)
+  for (std::size_t f = 0; f < 6; ++f) {
     for (std::size_t s = 0; s < 4; ++s)
       t[f][s] = kHexLocalEdge[static_cast<std::size_t>(kHexFaces[f][s])]
                              [static_cast<std::size_t>(kHexFaces[f][(s + 1) % 4])];
+  }
   return t;
 }
 constexpr auto kFaceEdges = make_face_edges();
@@ -193,11 +194,13 @@ ValidationReport validate_hex_complex(const HexComplex& complex,
   {
     std::vector<std::pair<FaceKey, std::uint32_t>> entries;
     entries.reserve(6 * num_hexes);
-    for (std::size_t h = 0; h < num_hexes; ++h)
-      if (good[h])
+    for (std::size_t h = 0; h < num_hexes; ++h) {
+      if (good[h]) {
         for (int f = 0; f < 6; ++f)
           entries.emplace_back(face_key(hex_face(complex.hexes[h], f)),
                                static_cast<std::uint32_t>(6 * h + static_cast<std::size_t>(f)));
+      }
+    }
     std::sort(entries.begin(), entries.end());
     face_slots.reserve(entries.size());
     for (std::size_t i = 0; i < entries.size(); ++i) {
@@ -247,10 +250,11 @@ ValidationReport validate_hex_complex(const HexComplex& complex,
     three.flush(report);
     std::sort(pairs.begin(), pairs.end());
     Collector share(Invariant::HexesShareTwoFaces);
-    for (std::size_t i = 1; i < pairs.size(); ++i)
+    for (std::size_t i = 1; i < pairs.size(); ++i) {
       if (pairs[i] == pairs[i - 1] && (i < 2 || pairs[i - 2] != pairs[i]))
         share.add(HexId(std::size_t{pairs[i].first}).str() + "+" +
                   HexId(std::size_t{pairs[i].second}).str());
+    }
     share.flush(report);
     orientation.flush(report);
   }
@@ -369,10 +373,11 @@ ValidationReport validate_hex_complex(const HexComplex& complex,
       const std::size_t h2 = s2 / 6;
       for (int i : kHexFaces[s1 % 6]) {
         const NodeId v = complex.hexes[h1][static_cast<std::size_t>(i)];
-        for (std::size_t j = 0; j < 8; ++j)
+        for (std::size_t j = 0; j < 8; ++j) {
           if (complex.hexes[h2][j] == v)
             corners.unite(static_cast<std::uint32_t>(8 * h1 + static_cast<std::size_t>(i)),
                           static_cast<std::uint32_t>(8 * h2 + j));
+        }
       }
     }
     std::vector<std::int64_t> chi(num_nodes, 0);

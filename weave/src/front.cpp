@@ -21,14 +21,16 @@ Front::Front(const stc::QuadSurface& surface) : num_input_nodes_(surface.num_nod
     const stc::Quad& quad = surface.quads[q];
     for (int i = 0; i < 4; ++i) {
       const NodeId n = quad[static_cast<std::size_t>(i)];
-      if (!n.is_valid() || n.index() >= surface.num_nodes)
+      if (!n.is_valid() || n.index() >= surface.num_nodes) {
         throw InvalidInput("weave: " + QuadId(q).str() + " uses node " + n.str() +
                            " out of range (surface has " + std::to_string(surface.num_nodes) +
                            " nodes)");
-      for (int j = 0; j < i; ++j)
+      }
+      for (int j = 0; j < i; ++j) {
         if (quad[static_cast<std::size_t>(j)] == n)
           throw InvalidInput("weave: " + QuadId(q).str() + " repeats node " + n.str() +
                              " (degenerate quad): remove or repair it");
+      }
     }
     add_face(quad, FaceOwner{FaceOwner::Kind::Input, static_cast<std::int32_t>(q), -1}, 0);
   }
@@ -149,10 +151,11 @@ std::optional<std::string> Front::check_invariants() const {
     }
   }
   if (alive != alive_) return "alive face count out of date";
-  for (const auto& [edge, f] : directed)
+  for (const auto& [edge, f] : directed) {
     if (!directed.contains({edge.second, edge.first}))
       return "edge " + NodeId(edge.first).str() + "-" + NodeId(edge.second).str() +
              " of front face " + std::to_string(f) + " is open";
+  }
   // every vertex link is one cycle
   for (std::size_t v = 0; v < incident_.size(); ++v) {
     const auto& list = incident_[v];
