@@ -96,7 +96,9 @@ Eigen::Matrix<double, 9, 9> corner_hessian(const std::array<Eigen::Vector3d, 3>&
       (2.0 * (1.0 - theta) * phi) * Eigen::Matrix<double, 9, 9>::Identity();
   hess.noalias() += (2.0 * (1.0 - theta) * phi1) * (ev * gd.transpose() + gd * ev.transpose());
   hess.noalias() += edd * gd * gd.transpose();
-  // d2 det / d e_a d e_b = [e_c]x with the sign of the permutation (a, b, c).
+  // d2 det / d e_a d e_b = -[e_c]x times the sign of the permutation (a, b, c): block (0, 1)
+  // is -[e2]x, block (0, 2) is +[e1]x, block (1, 2) is -[e0]x, and the lower blocks their
+  // transposes.
   const auto cross = [](const Eigen::Vector3d& v) {
     Eigen::Matrix3d m;
     m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
@@ -216,6 +218,11 @@ class Problem {
   }
 
   [[nodiscard]] double volume() const { return volume_; }
+  /// The length unit h of the scaled positions.
+  [[nodiscard]] double scale() const { return h_; }
+  /// Whether hex_hessian projects each corner's Hessian (true but for inspection).
+  void set_projection(bool project) { project_ = project; }
+  [[nodiscard]] const std::vector<std::int32_t>& free_nodes() const { return free_; }
   [[nodiscard]] std::size_t num_free() const { return free_.size(); }
   [[nodiscard]] const std::vector<HexNodes>& hexes() const { return hexes_; }
   void deactivate(std::size_t hex, int corner) {
@@ -298,7 +305,8 @@ class Problem {
     out.setZero();
     for (std::size_t k = 0; k < 8; ++k) {
       if ((active_[hx] & (1u << k)) == 0) continue;
-      const Eigen::Matrix<double, 9, 9> h = project_psd(corner_hessian(edges(hx, k), eps_, theta_));
+      const Eigen::Matrix<double, 9, 9> raw = corner_hessian(edges(hx, k), eps_, theta_);
+      const Eigen::Matrix<double, 9, 9> h = project_ ? project_psd(raw) : raw;
       // e_j = x_{c[j+1]} - x_{c[0]}: the corner node's rows are minus the sum of the others.
       const auto& c = kHexCorners[k];
       Eigen::Matrix<double, 12, 12> lifted;
@@ -371,6 +379,7 @@ class Problem {
   std::vector<std::size_t> incidences_;  ///< hex * 8 + local
   Eigen::Vector3d centre_;
   double h_ = 1.0;
+  bool project_ = true;
   double volume_ = 0.0;
   Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> positions_;
   std::vector<double> hex_grad_;
@@ -391,40 +400,62 @@ class NewtonSolver {
 
   explicit NewtonSolver(const Problem& problem) {
     const auto n = static_cast<Eigen::Index>(3 * problem.num_free());
-    std::vector<Eigen::Triplet<double>> triplets;
+    // The coupled free-node pairs (row >= column) first, each once: triplets per hex would
+    // take about 5 kB a hex.
+    std::vector<std::uint64_t> pairs;
     for (const HexNodes& h : problem.hexes()) {
       for (std::size_t a = 0; a < 8; ++a) {
         for (std::size_t b = 0; b < 8; ++b) {
           const std::int32_t sa = problem.slot(h[a]);
           const std::int32_t sb = problem.slot(h[b]);
           if (sa < 0 || sb < 0 || sa < sb || body_diagonal(a, b)) continue;
-          for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j)
-              if (sa > sb || i >= j) triplets.emplace_back(3 * sa + i, 3 * sb + j, 0.0);
+          pairs.push_back(static_cast<std::uint64_t>(sa) << 32 | static_cast<std::uint32_t>(sb));
         }
       }
+    }
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    std::vector<Eigen::Triplet<double>> triplets;
+    triplets.reserve(pairs.size() * 9);
+    for (const std::uint64_t key : pairs) {
+      const auto sa = static_cast<Eigen::Index>(key >> 32);
+      const auto sb = static_cast<Eigen::Index>(key & 0xFFFFFFFFu);
+      for (Eigen::Index i = 0; i < 3; ++i)
+        for (Eigen::Index j = 0; j < 3; ++j)
+          if (sa > sb || i >= j) triplets.emplace_back(3 * sa + i, 3 * sb + j, 0.0);
     }
     matrix_.resize(n, n);
     matrix_.setFromTriplets(triplets.begin(), triplets.end());
     matrix_.makeCompressed();
-    solver_.analyzePattern(matrix_);
   }
 
-  /// Solves K dir = -grad with K the projected Hessian at the problem's current positions.
-  /// False when the factorisation fails even with a diagonal shift.
+  /// The lower triangle of the Hessian at the problem's current positions.
+  const Matrix& hessian(const Problem& problem) {
+    assemble(problem);
+    return matrix_;
+  }
+
+  /// Solves K dir = -grad with K the projected Hessian at the problem's current positions,
+  /// shifted by a multiple of its mean diagonal. False when no shift up to 1e-2 gives a
+  /// positive definite factorisation and a descent direction.
   bool direction(const Problem& problem, const Eigen::VectorXd& grad, Eigen::VectorXd& dir) {
     assemble(problem);
     double mean_diagonal = 0.0;
     for (Eigen::Index k = 0; k < matrix_.cols(); ++k) mean_diagonal += matrix_.coeff(k, k);
     mean_diagonal /= static_cast<double>(std::max<Eigen::Index>(1, matrix_.cols()));
     // Projection can leave K singular where every corner around a node is flat in some
-    // direction; a shift proportional to the mean diagonal keeps it definite.
+    // direction. The LLT factorisation fails on a pivot <= 0 (an LDLT would not), and then
+    // a larger shift is tried; so is one when rounding makes the direction uphill.
+    if (!analysed_) {
+      solver_.analyzePattern(matrix_);
+      analysed_ = true;
+    }
     for (double shift = 1e-8; shift <= 1e-2; shift *= 100.0) {
       solver_.setShift(shift * mean_diagonal);
       solver_.factorize(matrix_);
       if (solver_.info() != Eigen::Success) continue;
       dir = solver_.solve(-grad);
-      if (solver_.info() == Eigen::Success && dir.allFinite()) return true;
+      if (dir.allFinite() && grad.dot(dir) < 0.0) return true;
     }
     return false;
   }
@@ -473,7 +504,8 @@ class NewtonSolver {
   }
 
   Matrix matrix_;
-  Eigen::SimplicialLDLT<Matrix> solver_;
+  Eigen::SimplicialLLT<Matrix> solver_;
+  bool analysed_ = false;
   std::vector<Eigen::Matrix<double, 24, 24>> blocks_;
 };
 
@@ -561,9 +593,11 @@ Points harmonic_start(const HexMesh& mesh, const std::vector<bool>& fixed) {
 
 /// Projected Newton steps from x with Armijo backtracking, until the gradient norm is
 /// below the tolerance, a step gains less than 1e-10 (relative), no descent step is found
-/// or `max_newton_steps` are done. Returns the energy at the final x.
-double newton_descent(Problem& problem, NewtonSolver& newton, const PositionOptions& options,
-                      Eigen::VectorXd& x, PositionReport& report) {
+/// or `max_newton_steps` are done. Returns the energy at the final x and the steps taken.
+std::pair<double, int> newton_descent(Problem& problem, NewtonSolver& newton,
+                                      const PositionOptions& options, Eigen::VectorXd& x,
+                                      PositionReport& report) {
+  int taken = 0;
   Eigen::VectorXd grad;
   Eigen::VectorXd dir;
   problem.set_variables(x);
@@ -576,14 +610,17 @@ double newton_descent(Problem& problem, NewtonSolver& newton, const PositionOpti
     double t = 1.0;
     double trial = std::numeric_limits<double>::infinity();
     Eigen::VectorXd next;
-    for (int k = 0; k < 40; ++k, t *= 0.5) {
+    bool accepted = false;
+    for (int k = 0; k < 40 && !accepted; ++k) {
       next = x + t * dir;
       problem.set_variables(next);
       trial = problem.evaluate(nullptr);
-      if (trial <= energy + 1e-4 * t * slope) break;
+      accepted = trial <= energy + 1e-4 * t * slope;
+      if (!accepted) t *= 0.5;
     }
-    if (!(trial <= energy + 1e-4 * t * slope)) break;
+    if (!accepted) break;
     ++report.newton_steps;
+    ++taken;
     const double gain = (energy - trial) / std::max(1.0, std::abs(trial));
     x = next;
     problem.set_variables(x);
@@ -591,7 +628,7 @@ double newton_descent(Problem& problem, NewtonSolver& newton, const PositionOpti
     if (gain < 1e-10) break;
   }
   problem.set_variables(x);
-  return energy;
+  return {energy, taken};
 }
 
 }  // namespace
@@ -602,11 +639,42 @@ double winslow_corner_energy(const Eigen::Matrix3d& edges, double eps, double th
   const std::array<Eigen::Vector3d, 3> e = {edges.col(0), edges.col(1), edges.col(2)};
   std::array<Eigen::Vector3d, 3> g;
   const double energy = corner_energy(e, eps, theta, gradient != nullptr ? &g : nullptr);
+  if (!std::isfinite(energy)) {  // eps = 0 and det <= 0: no derivative either
+    if (gradient != nullptr) gradient->setConstant(std::numeric_limits<double>::quiet_NaN());
+    if (hessian != nullptr) hessian->setConstant(std::numeric_limits<double>::quiet_NaN());
+    return energy;
+  }
   if (gradient != nullptr)
     for (Eigen::Index k = 0; k < 3; ++k)
       gradient->segment<3>(3 * k) = g[static_cast<std::size_t>(k)];
   if (hessian != nullptr) *hessian = corner_hessian(e, eps, theta);
   return energy;
+}
+
+PositionEnergy position_energy(const HexMesh& mesh, const std::vector<bool>& fixed, double eps,
+                               double theta, EnergyDerivatives derivatives, int threads) {
+  if (fixed.size() != static_cast<std::size_t>(mesh.points.rows())) {
+    throw InvalidInput("position_energy: the fixed mask has " + std::to_string(fixed.size()) +
+                       " entries for " + std::to_string(mesh.points.rows()) + " nodes");
+  }
+  Problem problem(mesh, fixed, theta);
+  problem.set_threads(threads > 0 ? static_cast<std::size_t>(threads)
+                                  : std::max(1u, std::thread::hardware_concurrency()));
+  problem.set_epsilon(eps);
+  PositionEnergy out;
+  for (const std::int32_t v : problem.free_nodes()) out.free_nodes.emplace_back(v);
+  const double h = problem.scale();
+  // Scaled positions are (p - centre) / h: a derivative in model units divides by h per order.
+  out.energy = problem.evaluate(&out.gradient);
+  out.gradient /= h;
+  if (derivatives != EnergyDerivatives::Gradient && problem.num_free() > 0) {
+    problem.set_projection(derivatives == EnergyDerivatives::ProjectedHessian);
+    NewtonSolver assembler(problem);
+    const Eigen::SparseMatrix<double>& lower = assembler.hessian(problem);
+    out.hessian = lower.selfadjointView<Eigen::Lower>();
+    out.hessian /= h * h;
+  }
+  return out;
 }
 
 std::vector<ImpossibleCorner> impossible_corners(const HexMesh& mesh,
@@ -772,19 +840,36 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
       const double start = problem.evaluate(nullptr);
       objective.reset(x, start);
       double fx = start;
-      bool slow = false;
+      int used = 0;
+      bool line_search_failed = false;
       try {
-        const int used = solver.minimize(objective, x, fx);
+        used = solver.minimize(objective, x, fx);
         report.iterations += static_cast<std::size_t>(used);
-        slow = options.newton_after > 0 && used >= param.max_iterations;
       } catch (const std::runtime_error&) {
-        // A line search that cannot progress ends this round; the best point is kept.
+        // A line search that cannot progress ends L-BFGS; the best point is kept.
+        line_search_failed = true;
       }
       x = objective.best();
       double energy = objective.best_energy();
-      if (slow) {
+      if (options.newton_after > 0 && (line_search_failed || used >= param.max_iterations)) {
         if (!newton) newton.emplace(problem);
-        energy = newton_descent(problem, *newton, options, x, report);
+        int taken = 0;
+        std::tie(energy, taken) = newton_descent(problem, *newton, options, x, report);
+        const int left = options.max_inner_iterations - used;
+        if (taken == 0 && !line_search_failed && left > 0) {
+          // Newton found no step: L-BFGS goes on with the rest of the round's budget.
+          LBFGSpp::LBFGSParam<double> rest_param = param;
+          rest_param.max_iterations = left;
+          LBFGSpp::LBFGSSolver<double, LBFGSpp::LineSearchBacktracking> rest(rest_param);
+          objective.reset(x, energy);
+          fx = energy;
+          try {
+            report.iterations += static_cast<std::size_t>(rest.minimize(objective, x, fx));
+          } catch (const std::runtime_error&) {
+          }
+          x = objective.best();
+          energy = objective.best_energy();
+        }
       }
       problem.set_variables(x);
       ++report.outer_iterations;

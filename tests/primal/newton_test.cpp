@@ -2,10 +2,13 @@
 // differences of the analytic gradient, and Newton rounds untangling as L-BFGS does.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
+#include <random>
 
 #include "primal/position_helpers.hpp"
 #include "stcweave/primal/position.hpp"
+#include "stcweave/stc/errors.hpp"
 #include "support/shapes.hpp"
 
 namespace stcweave::primal {
@@ -147,6 +150,119 @@ TEST(Newton, EachStepLowersTheEnergy) {
   const PositionReport r = position_nodes(mesh, options);
   EXPECT_GT(r.newton_steps, 0u);
   EXPECT_LT(r.energy_after, r.energy_before);
+}
+
+}  // namespace
+}  // namespace stcweave::primal
+
+namespace stcweave::primal {
+namespace {
+
+/// `mesh` with its nodes renumbered by a seeded shuffle (so that the free nodes' order and
+/// the hexes' local numbering exercise the assembly's index arithmetic).
+HexMesh renumbered(const HexMesh& mesh, std::vector<bool>& fixed, std::uint64_t seed) {
+  const auto n = static_cast<std::size_t>(mesh.points.rows());
+  std::vector<std::int32_t> to(n);
+  for (std::size_t v = 0; v < n; ++v) to[v] = static_cast<std::int32_t>(v);
+  std::mt19937_64 random(seed);
+  for (std::size_t i = n; i > 1; --i) std::swap(to[i - 1], to[random() % i]);
+  HexMesh out = mesh;
+  std::vector<bool> moved(n);
+  for (std::size_t v = 0; v < n; ++v) {
+    out.points.row(to[v]) = mesh.points.row(static_cast<Eigen::Index>(v));
+    moved[static_cast<std::size_t>(to[v])] = fixed[v];
+  }
+  for (stc::Hex& h : out.complex.hexes)
+    for (NodeId& v : h) v = NodeId(to[v.index()]);
+  fixed = moved;
+  return out;
+}
+
+TEST(PositionEnergy, HessianTimesAVectorMatchesTheGradientsDifference) {
+  // 17 x 17 x 16 = 4624 hexes: two assembly chunks, several threads; nodes shuffled.
+  HexMesh box = test::box_hexes(17, 17, 16);
+  std::vector<bool> fixed = test::boundary_nodes(box);
+  test::scramble(box, fixed, 0.4, 3);
+  const HexMesh mesh = renumbered(box, fixed, 11);
+  const double eps = 0.05;
+  const PositionEnergy at = position_energy(mesh, fixed, eps, 0.5, EnergyDerivatives::Hessian, 2);
+  ASSERT_EQ(at.gradient.size(), static_cast<Eigen::Index>(3 * at.free_nodes.size()));
+  ASSERT_EQ(at.hessian.rows(), at.gradient.size());
+  std::mt19937_64 random(5);
+  Eigen::VectorXd v(at.gradient.size());
+  for (Eigen::Index k = 0; k < v.size(); ++k)
+    v(k) = static_cast<double>(random() >> 11) / 9007199254740992.0 - 0.5;
+  const double step = 1e-6;
+  const auto moved = [&](double sign) {
+    HexMesh m = mesh;
+    for (std::size_t i = 0; i < at.free_nodes.size(); ++i)
+      for (Eigen::Index c = 0; c < 3; ++c)
+        m.points(static_cast<Eigen::Index>(at.free_nodes[i].index()), c) +=
+            sign * step * v(static_cast<Eigen::Index>(3 * i) + c);
+    return position_energy(m, fixed, eps, 0.5, EnergyDerivatives::Gradient, 2).gradient;
+  };
+  const Eigen::VectorXd numeric = (moved(1.0) - moved(-1.0)) / (2.0 * step);
+  const Eigen::VectorXd analytic = at.hessian * v;
+  EXPECT_LE((analytic - numeric).norm(), 1e-5 * numeric.norm())
+      << "|Kv| " << analytic.norm() << ", |dg| " << numeric.norm();
+
+  // The energy's own central difference checks the gradient on the same mesh.
+  const auto energy = [&](double sign) {
+    HexMesh m = mesh;
+    for (std::size_t i = 0; i < at.free_nodes.size(); ++i)
+      for (Eigen::Index c = 0; c < 3; ++c)
+        m.points(static_cast<Eigen::Index>(at.free_nodes[i].index()), c) +=
+            sign * step * v(static_cast<Eigen::Index>(3 * i) + c);
+    return position_energy(m, fixed, eps, 0.5).energy;
+  };
+  const double slope = at.gradient.dot(v);
+  EXPECT_NEAR((energy(1.0) - energy(-1.0)) / (2.0 * step), slope,
+              1e-4 * std::max(1.0, std::abs(slope)));
+}
+
+TEST(PositionEnergy, ProjectedHessianIsPositiveSemiDefiniteWhereTheExactOneIsNot) {
+  // The tangled harmonic placement of a small bent box: the exact Hessian is indefinite.
+  HexMesh mesh = test::box_hexes(4, 4, 4);
+  test::bend(mesh, 4.0, 4.0, 0.8, 1.5 * M_PI);
+  const std::vector<bool> fixed = test::boundary_nodes(mesh);
+  PositionOptions harmonic;
+  harmonic.fixed = fixed;
+  harmonic.start = StartPosition::Harmonic;
+  harmonic.max_outer_iterations = 1;
+  harmonic.max_inner_iterations = 1;
+  HexMesh tangled = mesh;
+  (void)position_nodes(tangled, harmonic);  // one iteration from the harmonic start
+  const auto eigenvalues = [&](EnergyDerivatives d) {
+    const PositionEnergy e = position_energy(tangled, fixed, 0.1, 0.5, d);
+    const Eigen::MatrixXd dense = Eigen::MatrixXd(e.hessian);
+    return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(dense).eigenvalues();
+  };
+  const Eigen::VectorXd exact = eigenvalues(EnergyDerivatives::Hessian);
+  const Eigen::VectorXd projected = eigenvalues(EnergyDerivatives::ProjectedHessian);
+  EXPECT_LT(exact.minCoeff(), -1e-6 * exact.maxCoeff());
+  EXPECT_GE(projected.minCoeff(), -1e-10 * projected.maxCoeff());
+}
+
+TEST(Newton, ConvergesInFewStepsNearTheMinimum) {
+  // A lightly scrambled box: Newton from the first L-BFGS iteration reaches the gradient
+  // tolerance in a few steps (L-BFGS alone needs many more iterations).
+  HexMesh mesh = test::box_hexes(5, 5, 5);
+  PositionOptions options;
+  options.fixed = test::boundary_nodes(mesh);
+  test::scramble(mesh, options.fixed, 0.2, 9);
+  options.newton_after = 1;
+  options.max_outer_iterations = 1;
+  options.max_newton_steps = 12;
+  const PositionReport r = position_nodes(mesh, options);
+  EXPECT_GT(r.newton_steps, 0u);
+  EXPECT_LT(r.newton_steps, 12u) << "Newton did not converge fast: " << r.stop;
+  const PositionEnergy e = position_energy(mesh, options.fixed, r.epsilon, options.theta);
+  EXPECT_LE(e.gradient.norm(), 1e-3) << r.newton_steps << " steps";
+}
+
+TEST(PositionEnergy, WrongMaskSizeIsRejected) {
+  const HexMesh mesh = test::box_hexes(2, 2, 2);
+  EXPECT_THROW((void)position_energy(mesh, std::vector<bool>(3, false), 0.1, 0.5), InvalidInput);
 }
 
 }  // namespace

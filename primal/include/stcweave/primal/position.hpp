@@ -34,6 +34,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/SparseCore>
+
 #include "stcweave/primal/mesh.hpp"
 #include "stcweave/primal/quality.hpp"
 
@@ -72,10 +74,11 @@ struct PositionOptions {
   int stall_iterations = 3;
   /// L-BFGS memory.
   int memory = 6;
-  /// When L-BFGS has used this many iterations in a round without meeting its tolerance,
-  /// the round goes on with projected Newton steps (0: never, the default). Each step
-  /// assembles the Hessian of every corner projected to positive semi-definite and solves
-  /// with Eigen's sparse LDLT (SimplicialLDLT). Off by default because it was measured
+  /// When L-BFGS has used this many iterations in a round (or its line search failed), the
+  /// round goes on with projected Newton steps (0: never, the default), and back to L-BFGS
+  /// if Newton finds no step. Each step assembles the Hessian of every corner projected to
+  /// positive semi-definite and solves with Eigen's sparse Cholesky (SimplicialLLT, shifted
+  /// until definite). Off by default because it was measured
   /// slower than L-BFGS alone on every mesh tried (docs/geometry.md): a factorisation of a
   /// volume mesh costs far more than the L-BFGS iterations one step saves.
   int newton_after = 0;
@@ -144,6 +147,32 @@ struct PositionReport {
 double winslow_corner_energy(const Eigen::Matrix3d& edges, double eps, double theta,
                              Eigen::Matrix<double, 9, 1>* gradient = nullptr,
                              Eigen::Matrix<double, 9, 9>* hessian = nullptr);
+
+/// What `position_energy` computes besides the energy.
+enum class EnergyDerivatives {
+  Gradient,          ///< the gradient only
+  Hessian,           ///< and the exact Hessian
+  ProjectedHessian,  ///< and the Hessian with every corner's part projected to PSD, as the
+                     ///< projected Newton step uses it
+};
+
+/// The energy `position_nodes` minimises, at the current positions of `mesh`, as a function
+/// of the coordinates of the free nodes (those not `fixed` that some hex uses), for one eps.
+struct PositionEnergy {
+  double energy = 0.0;  ///< summed over every hex corner (none is left out)
+  /// The free nodes, in node order; variable 3 i + c is coordinate c of free_nodes[i].
+  std::vector<NodeId> free_nodes;
+  Eigen::VectorXd gradient;             ///< with respect to the coordinates, in model units
+  Eigen::SparseMatrix<double> hessian;  ///< symmetric, when asked (else empty)
+};
+
+/// The untangling energy with its derivatives, for inspection and tests (`position_nodes`
+/// works with the same energy on scaled coordinates). `threads` as in PositionOptions.
+/// 	hrow InvalidInput when `fixed` does not have one entry per node or a hex names a node
+///        out of range.
+[[nodiscard]] PositionEnergy position_energy(
+    const HexMesh& mesh, const std::vector<bool>& fixed, double eps, double theta,
+    EnergyDerivatives derivatives = EnergyDerivatives::Gradient, int threads = 0);
 
 /// The corners of `mesh` that cannot become positive whatever the free nodes do: corners
 /// whose four nodes are fixed and whose determinant is <= 0, and pairs of hexes with the
