@@ -169,6 +169,7 @@ pid_t spawn(const fs::path& log, std::size_t memory_mb, const Child& child) {
 /// Starts `args` (this program's argv) in a child; returns its pid, or -1 with errno set.
 pid_t spawn_exec(const std::vector<std::string>& args, const fs::path& log, std::size_t memory_mb) {
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
   return spawn(log, memory_mb, [&argv] {

@@ -10,13 +10,12 @@
 namespace stcweave::cli {
 
 /// Exit codes, documented in README.md.
-enum ExitCode : int {
-  kSuccess = 0,
-  kUsage = 1,
-  kInvalidInput = 2,
-  kInternal = 3,
-  kInverted = 4  ///< `mesh --fail-on-inverted`: hexes are still inverted after untangling
-};
+inline constexpr int kSuccess = 0;
+inline constexpr int kUsage = 1;
+inline constexpr int kInvalidInput = 2;
+inline constexpr int kInternal = 3;
+/// `mesh --fail-on-inverted`: hexes are still inverted after untangling.
+inline constexpr int kInverted = 4;
 
 using Action = std::function<int()>;
 

@@ -1,6 +1,7 @@
 /// The stcweave command-line program: parses the command line, runs one subcommand, and
 /// maps library exceptions to exit codes (0 success, 1 usage, 2 invalid input, 3 internal
-/// failure) with a one-line message on stderr.
+/// failure, 4 inverted hexes left with `mesh --fail-on-inverted`) with a one-line message on
+/// stderr.
 
 #include <iostream>
 #include <vector>
@@ -8,11 +9,14 @@
 #include "commands.hpp"
 #include "stcweave/stc/errors.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run(int argc, char** argv) {
   using namespace stcweave;
   CLI::App app{
       "stcweave: fill a closed quad surface with hexahedra by weaving its Spatial Twist "
-      "Continuum.\nExit codes: 0 success, 1 usage, 2 invalid input, 3 internal failure."};
+      "Continuum.\nExit codes: 0 success, 1 usage, 2 invalid input, 3 internal failure, 4 "
+      "inverted hexes left (mesh --fail-on-inverted)."};
   app.require_subcommand(1);
   app.set_version_flag("--version", "stcweave 0.1.0");
 
@@ -54,5 +58,16 @@ int main(int argc, char** argv) {
     std::cerr << "stcweave: internal error: " << e.what()
               << " (this is a bug: please report it with the input file)\n";
     return cli::kInternal;
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (...) {  // e.g. out of memory while setting up the command line
+    std::cerr << "stcweave: internal error before any command ran\n";
+    return stcweave::cli::kInternal;
   }
 }

@@ -14,8 +14,9 @@ std::vector<std::array<double, 4>> dihedral_angles(const SurfaceMesh& mesh) {
     return mesh.points.row(n.value()).transpose();
   };
   for (std::size_t q = 0; q < quads.size(); ++q) {
-    const auto& Q = quads[q];
-    const Eigen::Vector3d n = (point(Q[2]) - point(Q[0])).cross(point(Q[3]) - point(Q[1]));
+    const auto& corners = quads[q];
+    const Eigen::Vector3d n =
+        (point(corners[2]) - point(corners[0])).cross(point(corners[3]) - point(corners[1]));
     const double len = n.norm();
     normal[q] = len > 0.0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
   }

@@ -1161,6 +1161,7 @@ GmshType gmsh_type(long long type) {
       return {10, 2};
     case 22:
       return {12, 2};
+    // NOLINTNEXTLINE(bugprone-branch-clone): a table of node counts by element type
     case 23:
       return {15, 2};
     case 24:
@@ -1558,6 +1559,7 @@ int mfem_geometry_nodes(long long geometry) {
       return 2;
     case 2:
       return 3;
+    // NOLINTNEXTLINE(bugprone-branch-clone): a table of corner counts by element type
     case 3:
       return 4;
     case 4:

@@ -116,7 +116,7 @@ std::string vtk_hex(const HexMesh& mesh) {
   for (Eigen::Index i = 0; i < n; ++i) o.point(mesh.points, i) << '\n';
   o << "CELLS ";
   o.integer(static_cast<long long>(m)) << ' ';
-  o.integer(static_cast<long long>(9 * m)) << '\n';
+  o.integer(9 * static_cast<long long>(m)) << '\n';
   for (const auto& h : mesh.complex.hexes) {
     o << '8';
     for (const NodeId v : h) o << ' ', o.integer(v.value());
@@ -152,7 +152,7 @@ std::string vtu_hex(const HexMesh& mesh) {
   }
   o << "        </DataArray>\n"
        "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
-  for (std::size_t c = 0; c < m; ++c) o.integer(static_cast<long long>(8 * (c + 1))) << '\n';
+  for (std::size_t c = 0; c < m; ++c) o.integer(8 * (static_cast<long long>(c) + 1)) << '\n';
   o << "        </DataArray>\n"
        "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
   for (std::size_t c = 0; c < m; ++c) o << "12\n";

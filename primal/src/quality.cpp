@@ -161,22 +161,24 @@ std::array<double, 27> hex_bezier_coefficients(const std::array<Eigen::Vector3d,
   const auto m = [&p](int a, int b) -> Eigen::Vector3d {
     return 0.5 * (p[static_cast<std::size_t>(a)] + p[static_cast<std::size_t>(b)]);
   };
-  const auto P = [&p](int a) -> const Eigen::Vector3d& { return p[static_cast<std::size_t>(a)]; };
+  const auto node = [&p](int a) -> const Eigen::Vector3d& {
+    return p[static_cast<std::size_t>(a)];
+  };
   // J0..J7: the corner values; J8..J19: tets with two edge midpoints (Johnen et al.).
   std::array<double, 20> j{};
   for (std::size_t k = 0; k < 8; ++k) j[k] = corner_det(p, kHexCorners[k]);
-  j[8] = tet6(P(0), P(1), m(2, 3), m(4, 5));
-  j[9] = tet6(P(1), P(2), m(3, 0), m(5, 6));
-  j[10] = tet6(P(2), P(3), m(0, 1), m(6, 7));
-  j[11] = tet6(P(3), P(0), m(1, 2), m(7, 4));
-  j[12] = tet6(P(0), P(4), m(1, 5), m(3, 7));
-  j[13] = tet6(P(1), P(5), m(2, 6), m(0, 4));
-  j[14] = tet6(P(2), P(6), m(3, 7), m(1, 5));
-  j[15] = tet6(P(3), P(7), m(0, 4), m(2, 6));
-  j[16] = tet6(P(4), P(5), m(0, 1), m(6, 7));
-  j[17] = tet6(P(5), P(6), m(1, 2), m(7, 4));
-  j[18] = tet6(P(6), P(7), m(2, 3), m(4, 5));
-  j[19] = tet6(P(7), P(4), m(3, 0), m(5, 6));
+  j[8] = tet6(node(0), node(1), m(2, 3), m(4, 5));
+  j[9] = tet6(node(1), node(2), m(3, 0), m(5, 6));
+  j[10] = tet6(node(2), node(3), m(0, 1), m(6, 7));
+  j[11] = tet6(node(3), node(0), m(1, 2), m(7, 4));
+  j[12] = tet6(node(0), node(4), m(1, 5), m(3, 7));
+  j[13] = tet6(node(1), node(5), m(2, 6), m(0, 4));
+  j[14] = tet6(node(2), node(6), m(3, 7), m(1, 5));
+  j[15] = tet6(node(3), node(7), m(0, 4), m(2, 6));
+  j[16] = tet6(node(4), node(5), m(0, 1), m(6, 7));
+  j[17] = tet6(node(5), node(6), m(1, 2), m(7, 4));
+  j[18] = tet6(node(6), node(7), m(2, 3), m(4, 5));
+  j[19] = tet6(node(7), node(4), m(3, 0), m(5, 6));
   std::array<double, 27> b{};
   for (std::size_t i = 0; i < 8; ++i) b[i] = j[i];
   for (std::size_t i = 8; i < 12; ++i) b[i] = 2 * j[i] - 0.5 * (j[i - 8] + j[(i - 7) % 4]);

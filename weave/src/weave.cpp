@@ -530,14 +530,14 @@ bool Weaver::try_seam(NodeId v, std::string* why) {
   }
   const FaceIndex fa = at_v[0];
   const FaceIndex fb = at_v[1];
-  const stc::Quad A = rotated(front_.face(fa).nodes, front_.corner_of(fa, v));
-  const stc::Quad B = rotated(front_.face(fb).nodes, front_.corner_of(fb, v));
-  const NodeId a = A[1], x = A[2], b = A[3];
-  if (B[1] != b || B[3] != a) {
+  const stc::Quad qa = rotated(front_.face(fa).nodes, front_.corner_of(fa, v));
+  const stc::Quad qb = rotated(front_.face(fb).nodes, front_.corner_of(fb, v));
+  const NodeId a = qa[1], x = qa[2], b = qa[3];
+  if (qb[1] != b || qb[3] != a) {
     *why = "its two faces do not share both edges";
     return false;
   }
-  const NodeId y = B[2];
+  const NodeId y = qb[2];
   const FaceOwner oa = front_.face(fa).owner;
   const FaceOwner ob = front_.face(fb).owner;
   if (oa.is_input() && ob.is_input()) {
@@ -679,25 +679,25 @@ bool Weaver::try_cross(NodeId v, std::string* why) {
     return false;
   }
   const FaceIndex f1 = at_v[0];
-  const stc::Quad F1 = rotated(front_.face(f1).nodes, front_.corner_of(f1, v));
-  const NodeId a = F1[1], xab = F1[2], b = F1[3];
+  const stc::Quad q1 = rotated(front_.face(f1).nodes, front_.corner_of(f1, v));
+  const NodeId a = q1[1], xab = q1[2], b = q1[3];
   FaceIndex f2 = kNoFace, f3 = kNoFace;
-  stc::Quad F2{}, F3{};
+  stc::Quad q2{}, q3{};
   for (FaceIndex f : {at_v[1], at_v[2]}) {
-    const stc::Quad Q = rotated(front_.face(f).nodes, front_.corner_of(f, v));
-    if (Q[1] == b) {
+    const stc::Quad quad = rotated(front_.face(f).nodes, front_.corner_of(f, v));
+    if (quad[1] == b) {
       f2 = f;
-      F2 = Q;
-    } else if (Q[3] == a) {
+      q2 = quad;
+    } else if (quad[3] == a) {
       f3 = f;
-      F3 = Q;
+      q3 = quad;
     }
   }
-  if (f2 == kNoFace || f3 == kNoFace || F2[3] != F3[1]) {
+  if (f2 == kNoFace || f3 == kNoFace || q2[3] != q3[1]) {
     *why = "its three faces do not form a corner";
     return false;
   }
-  const NodeId xbc = F2[2], c = F2[3], xca = F3[2];
+  const NodeId xbc = q2[2], c = q2[3], xca = q3[2];
   std::array<NodeId, 7> nodes{v, a, b, c, xab, xbc, xca};
   std::sort(nodes.begin(), nodes.end());
   if (std::adjacent_find(nodes.begin(), nodes.end()) != nodes.end()) {
@@ -705,7 +705,7 @@ bool Weaver::try_cross(NodeId v, std::string* why) {
     return false;
   }
   if (extended() && options_.extended.flat_cross_precondition && !relax_geometry_) {
-    // The three edges at v: (v, a) and (b, v) in F1, (c, v) in F2.
+    // The three edges at v: (v, a) and (b, v) in q1, (c, v) in q2.
     const int c1 = front_.corner_of(f1, v), c2 = front_.corner_of(f2, v);
     const std::array<double, 3> corner{edge_angle(f1, c1), edge_angle(f1, (c1 + 3) % 4),
                                        edge_angle(f2, (c2 + 3) % 4)};
@@ -823,10 +823,10 @@ bool Weaver::try_parallel_merging(const std::vector<Passage>& strip, std::string
   for (FaceIndex f : queue) seen[static_cast<std::size_t>(f)] = in_a;
   for (std::size_t qi = 0; qi < queue.size(); ++qi) {
     const FaceIndex f = queue[qi];
-    const stc::Quad& F = front_.face(f).nodes;
+    const stc::Quad& fq = front_.face(f).nodes;
     int k = -1;
     for (int j = 0; j < 4 && k < 0; ++j)
-      if (image.count(at(F, j).index()) != 0 && image.count(at(F, j + 1).index()) != 0) k = j;
+      if (image.count(at(fq, j).index()) != 0 && image.count(at(fq, j + 1).index()) != 0) k = j;
     if (k < 0) {  // reached before any of its edges was mapped: try again later
       if (qi + queue.size() > 8 * front_.num_faces()) {
         *why = "the region on side A is not a disc the strip maps";
@@ -835,15 +835,15 @@ bool Weaver::try_parallel_merging(const std::vector<Passage>& strip, std::string
       queue.push_back(f);
       continue;
     }
-    const NodeId u = at(F, k), v = at(F, k + 1), w = at(F, k + 2), x = at(F, k + 3);
+    const NodeId u = at(fq, k), v = at(fq, k + 1), w = at(fq, k + 2), x = at(fq, k + 3);
     const FaceSide gs = front_.find_edge(image.at(v.index()), image.at(u.index()));
     if (gs.face == kNoFace || face_mark_[static_cast<std::size_t>(gs.face)] == strip_stamp ||
         seen[static_cast<std::size_t>(gs.face)] == in_a) {
       *why = "no face of side B faces " + front_.face(f).owner.str();
       return false;
     }
-    const stc::Quad& G = front_.face(gs.face).nodes;
-    if (!assign(x, at(G, gs.index + 2)) || !assign(w, at(G, gs.index + 3))) {
+    const stc::Quad& gq = front_.face(gs.face).nodes;
+    if (!assign(x, at(gq, gs.index + 2)) || !assign(w, at(gq, gs.index + 3))) {
       *why = "the two regions differ at " + front_.face(f).owner.str();
       return false;
     }
@@ -897,9 +897,9 @@ bool Weaver::try_parallel_merging(const std::vector<Passage>& strip, std::string
   std::vector<stc::Hex> hexes;
   hexes.reserve(pairs.size());
   for (const auto& [f, g] : pairs) {
-    const stc::Quad F = front_.face(f).nodes;
+    const stc::Quad fq = front_.face(f).nodes;
     const auto img = [&](NodeId n) { return image.at(n.index()); };
-    hexes.push_back({F[0], F[3], F[2], F[1], img(F[0]), img(F[3]), img(F[2]), img(F[1])});
+    hexes.push_back({fq[0], fq[3], fq[2], fq[1], img(fq[0]), img(fq[3]), img(fq[2]), img(fq[1])});
     std::vector<std::int32_t> owners;
     for (int lf = 0; lf < 6; ++lf) {
       const FaceIndex h = hex_of(hexes.back(), lf);
@@ -991,12 +991,12 @@ bool Weaver::try_nonconvexity_seam(FaceIndex f2, int side, std::string* why) {
     return false;
   }
   const FaceIndex f1 = across.face;
-  const stc::Quad F2 = front_.face(f2).nodes;
-  const stc::Quad F1 = front_.face(f1).nodes;
-  // F2 = [v, u, c, d] from its side `side`; F1 holds u -> v: F1 = [u, v, a, b].
-  const NodeId v = at(F2, side), u = at(F2, side + 1), c = at(F2, side + 2), d = at(F2, side + 3);
-  const NodeId a = at(F1, across.index + 2), b = at(F1, across.index + 3);
-  if (at(F1, across.index) != u || at(F1, across.index + 1) != v) {
+  const stc::Quad q2 = front_.face(f2).nodes;
+  const stc::Quad q1 = front_.face(f1).nodes;
+  // q2 = [v, u, c, d] from its side `side`; q1 holds u -> v: q1 = [u, v, a, b].
+  const NodeId v = at(q2, side), u = at(q2, side + 1), c = at(q2, side + 2), d = at(q2, side + 3);
+  const NodeId a = at(q1, across.index + 2), b = at(q1, across.index + 3);
+  if (at(q1, across.index) != u || at(q1, across.index + 1) != v) {
     *why = "the faces do not hold their common edge in opposite directions";
     return false;
   }
@@ -1010,7 +1010,7 @@ bool Weaver::try_nonconvexity_seam(FaceIndex f2, int side, std::string* why) {
       return false;
     }
   }
-  // Folding about E takes a (next to v in F1) onto d (next to v in F2), b onto c.
+  // Folding about E takes a (next to v in q1) onto d (next to v in q2), b onto c.
   if (share_hex(a, d) || share_hex(b, c)) {
     *why = "a merge would join two nodes of one hex";
     return false;
@@ -1027,7 +1027,7 @@ bool Weaver::try_nonconvexity_seam(FaceIndex f2, int side, std::string* why) {
     return false;
   }
   merge_nodes(c, b);
-  // Glue every pair of faces that now coincide around the four nodes (F1 and F2 first).
+  // Glue every pair of faces that now coincide around the four nodes (q1 and q2 first).
   std::vector<std::string> whiskers;
   bool ok = true;
   for (NodeId n : {c, d, u, v}) {
@@ -1517,10 +1517,10 @@ std::optional<std::string> Weaver::shrink(const std::vector<Passage>& initial, i
         }
       } else if (k == 3) {
         applied = try_cross(v, &why);
-        if (!applied) why = "cross refused: " + why;
+        if (!applied) why.insert(0, "cross refused: ");
       } else {
         applied = try_blind_chord(v, strip, &why);
-        if (!applied) why = "blind chord refused: " + why;
+        if (!applied) why.insert(0, "blind chord refused: ");
       }
       if (applied) break;
       if (reasons.size() < 600) reasons += (reasons.empty() ? "" : "; ") + v.str() + ": " + why;

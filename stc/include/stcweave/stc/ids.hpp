@@ -12,7 +12,7 @@
 
 namespace stcweave {
 
-/// A typed index. `Tag::prefix` names the entity in messages.
+/// A typed index. `Tag::kPrefix` names the entity in messages.
 template <class Tag>
 class Id {
  public:
@@ -29,11 +29,12 @@ class Id {
   /// The id as a container index. \pre is_valid().
   [[nodiscard]] constexpr std::size_t index() const { return static_cast<std::size_t>(value_); }
 
+  // NOLINTNEXTLINE(modernize-use-nullptr): clang-tidy 14 misreads a defaulted <=>
   friend constexpr auto operator<=>(Id, Id) = default;
 
   /// `q12`, or `q?` for the invalid id.
   [[nodiscard]] std::string str() const {
-    return std::string(Tag::prefix) + (is_valid() ? std::to_string(value_) : std::string("?"));
+    return std::string(Tag::kPrefix) + (is_valid() ? std::to_string(value_) : std::string("?"));
   }
   friend std::ostream& operator<<(std::ostream& os, Id id) { return os << id.str(); }
 
@@ -42,25 +43,25 @@ class Id {
 };
 
 struct NodeTag {
-  static constexpr const char* prefix = "n";
+  static constexpr const char* kPrefix = "n";
 };
 struct QuadTag {
-  static constexpr const char* prefix = "q";
+  static constexpr const char* kPrefix = "q";
 };
 struct LoopTag {
-  static constexpr const char* prefix = "l";
+  static constexpr const char* kPrefix = "l";
 };
 struct SheetTag {
-  static constexpr const char* prefix = "s";
+  static constexpr const char* kPrefix = "s";
 };
 struct ChordTag {
-  static constexpr const char* prefix = "c";
+  static constexpr const char* kPrefix = "c";
 };
 struct HexTag {
-  static constexpr const char* prefix = "h";
+  static constexpr const char* kPrefix = "h";
 };
 struct ComponentTag {
-  static constexpr const char* prefix = "component ";
+  static constexpr const char* kPrefix = "component ";
 };
 
 using NodeId = Id<NodeTag>;            ///< a mesh vertex (primal)

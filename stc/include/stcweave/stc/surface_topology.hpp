@@ -20,7 +20,7 @@ namespace stcweave::stc {
 
 /// Tag of an undirected edge of a quad surface (printed `e12`).
 struct EdgeTag {
-  static constexpr const char* prefix = "e";
+  static constexpr const char* kPrefix = "e";
 };
 /// An undirected edge of a quad surface (an index into `SurfaceTopology::edges`).
 using EdgeId = Id<EdgeTag>;
