@@ -3,6 +3,8 @@
 #   ./dev.sh run   install what is missing, build (Release, in build/), mesh data/lblock.obj
 #   ./dev.sh test  install what is missing, build, run the whole test suite (ctest)
 #   ./dev.sh build install what is missing, build
+#   ./dev.sh lint  also install clang-format and clang-tidy; check the formatting of every
+#                  C++ file and run clang-tidy (.clang-tidy) on the libraries and the CLI
 # Idempotent: a machine that already has everything only builds.
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -14,7 +16,7 @@ JOBS=${STCWEAVE_JOBS:-$(nproc 2>/dev/null || echo 2)}
 
 install_missing() {
   local missing=()
-  for p in "${PACKAGES[@]}"; do
+  for p in "${PACKAGES[@]}" "$@"; do
     if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
       missing+=("$p")
     fi
@@ -33,7 +35,7 @@ install_missing() {
 }
 
 build() {
-  install_missing
+  install_missing "$@"
   if [ ! -f "$BUILD_DIR/CMakeCache.txt" ]; then
     cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release
   fi
@@ -54,7 +56,22 @@ case "$cmd" in
     build
     cd "$BUILD_DIR"
     ctest --output-on-failure -j "$JOBS" ;;
+  lint)
+    build clang-format clang-tidy
+    status=0
+    if ! git ls-files '*.cpp' '*.hpp' | xargs clang-format --dry-run --Werror; then
+      echo "dev.sh: formatting differs: run clang-format -i on the files above" >&2
+      status=1
+    fi
+    run-clang-tidy -p "$BUILD_DIR" -j "$JOBS" -quiet 'stc/src|weave/src|primal/src|cli/' \
+      > "$BUILD_DIR/clang-tidy.log" 2>&1 || status=1
+    if grep -q "warning:" "$BUILD_DIR/clang-tidy.log"; then
+      grep "warning:" "$BUILD_DIR/clang-tidy.log" | sort -u >&2
+      status=1
+    fi
+    [ "$status" -eq 0 ] && echo "dev.sh: clang-format and clang-tidy are clean"
+    exit "$status" ;;
   *)
-    echo "usage: ./dev.sh run|test|build" >&2
+    echo "usage: ./dev.sh run|test|build|lint" >&2
     exit 1 ;;
 esac
