@@ -13,22 +13,19 @@
 
 #include "stcweave/primal/diagnose.hpp"
 #include "stcweave/primal/io.hpp"
+#include "support/corpus.hpp"
 
 namespace stcweave::primal {
 namespace {
 
-const std::filesystem::path kData = STCWEAVE_SHARED_DATA;
-
-nlohmann::json load_expected() {
-  std::ifstream in(kData / "expected.json");
-  return nlohmann::json::parse(in);
-}
+const std::filesystem::path& kData = test::shared_data();
 
 TEST(CorpusDiagnose, EveryFigureOfExpectedJsonAgrees) {
   if (!std::filesystem::exists(kData / "expected.json"))
     GTEST_SKIP() << "shared test data not found at " << kData
                  << " (set STCWEAVE_SHARED_DATA): corpus diagnosis not checked";
-  const nlohmann::json expected = load_expected();
+  const nlohmann::json& expected = test::expected_figures();
+  ASSERT_TRUE(expected.is_object()) << "expected.json is not readable JSON";
   ASSERT_FALSE(expected.empty());
   std::size_t files = 0, figures = 0;
   std::string largest;

@@ -20,29 +20,22 @@
 #include "stcweave/primal/io.hpp"
 #include "stcweave/primal/position.hpp"
 #include "stcweave/primal/quality.hpp"
+#include "support/corpus.hpp"
 
 namespace stcweave {
 namespace {
-
-namespace fs = std::filesystem;
 
 constexpr std::size_t kMaxHexes = 10000;
 
 /// The corpus hex meshes with at most kMaxHexes hexes, by name.
 std::vector<std::string> reference_hex_files() {
-  const fs::path expected = fs::path(STCWEAVE_SHARED_DATA) / "expected.json";
-  std::vector<std::string> files;
-  if (!fs::exists(expected)) return files;
-  std::ifstream in(expected);
-  const auto j = nlohmann::json::parse(in);
-  for (const auto& [name, v] : j.items())
-    if (v.contains("reference_hexes") && v["reference_hexes"].get<std::size_t>() <= kMaxHexes)
-      files.push_back(name);
-  return files;
+  return test::expected_files([](const nlohmann::json& v) {
+    return v.contains("reference_hexes") && v["reference_hexes"].get<std::size_t>() <= kMaxHexes;
+  });
 }
 
 primal::HexMesh load(const std::string& name) {
-  const primal::MeshFile f = primal::read_mesh(fs::path(STCWEAVE_SHARED_DATA) / name);
+  const primal::MeshFile f = primal::read_mesh(test::shared_data() / name);
   primal::HexMesh m;
   m.points = f.points;
   m.complex.hexes = f.hexes;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "stcweave/primal/io.hpp"
+#include "support/corpus.hpp"
 
 namespace {
 
@@ -20,26 +21,15 @@ namespace fs = std::filesystem;
 using stcweave::primal::MeshFile;
 using stcweave::primal::read_mesh;
 
-const fs::path kData = STCWEAVE_SHARED_DATA;
+const fs::path& kData = stcweave::test::shared_data();
+
+using stcweave::test::expected_figures;
 
 /// The files listed in expected.json; one empty name when the data folder is missing, so
 /// that the test shows a visible skip rather than nothing.
 std::vector<std::string> listed_files() {
-  std::ifstream in(kData / "expected.json");
-  if (!in) return {""};
-  const nlohmann::json expected = nlohmann::json::parse(in, nullptr, false);
-  if (expected.is_discarded() || !expected.is_object()) return {""};
-  std::vector<std::string> files;
-  for (const auto& [name, figures] : expected.items()) files.push_back(name);
-  return files;
-}
-
-const nlohmann::json& expected_figures() {
-  static const nlohmann::json figures = [] {
-    std::ifstream in(kData / "expected.json");
-    return nlohmann::json::parse(in, nullptr, false);
-  }();
-  return figures;
+  std::vector<std::string> files = stcweave::test::expected_files();
+  return files.empty() ? std::vector<std::string>{""} : files;
 }
 
 bool ends_with(const std::string& s, const std::string& suffix) {

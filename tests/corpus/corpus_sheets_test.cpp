@@ -26,32 +26,22 @@
 #include "stcweave/primal/io.hpp"
 #include "stcweave/stc/hex_stc.hpp"
 #include "stcweave/stc/validate.hpp"
+#include "support/corpus.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using namespace stcweave;
 
-const fs::path kData = STCWEAVE_SHARED_DATA;
-
-const nlohmann::json& expected_figures() {
-  static const nlohmann::json figures = [] {
-    std::ifstream in(kData / "expected.json");
-    if (!in) return nlohmann::json();
-    return nlohmann::json::parse(in, nullptr, false);
-  }();
-  return figures;
-}
+const fs::path& kData = test::shared_data();
+using test::expected_figures;
 
 /// The hex meshes listed in expected.json; one empty name when the data folder is missing,
 /// so that the test shows a visible skip rather than nothing.
 std::vector<std::string> hex_meshes() {
-  const nlohmann::json& expected = expected_figures();
-  if (expected.is_discarded() || !expected.is_object()) return {""};
-  std::vector<std::string> files;
-  for (const auto& [name, figures] : expected.items())
-    if (figures.contains("reference_hexes") && figures["reference_hexes"].is_number())
-      files.push_back(name);
+  std::vector<std::string> files = test::expected_files([](const nlohmann::json& figures) {
+    return figures.contains("reference_hexes") && figures["reference_hexes"].is_number();
+  });
   return files.empty() ? std::vector<std::string>{""} : files;
 }
 

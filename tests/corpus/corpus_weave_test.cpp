@@ -9,23 +9,16 @@
 
 #include "stcweave/primal/io.hpp"
 #include "stcweave/primal/pipeline.hpp"
+#include "support/corpus.hpp"
 
 namespace stcweave {
 namespace {
 
-namespace fs = std::filesystem;
-
 std::vector<std::string> loop_clean_files() {
-  const fs::path expected = fs::path(STCWEAVE_SHARED_DATA) / "expected.json";
-  std::vector<std::string> files;
-  if (!fs::exists(expected)) return files;
-  std::ifstream in(expected);
-  const auto j = nlohmann::json::parse(in);
-  for (const auto& [name, v] : j.items())
-    if (v.value("genus", nlohmann::json()) == 0 && v.value("components", 0) == 1 &&
-        v.value("self_intersecting_loops", -1) == 0)
-      files.push_back(name);
-  return files;
+  return test::expected_files([](const nlohmann::json& v) {
+    return v.value("genus", nlohmann::json()) == 0 && v.value("components", 0) == 1 &&
+           v.value("self_intersecting_loops", -1) == 0;
+  });
 }
 
 TEST(CorpusWeave, EveryLoopCleanGenusZeroFileGivesAValidComplex) {
@@ -38,7 +31,7 @@ TEST(CorpusWeave, EveryLoopCleanGenusZeroFileGivesAValidComplex) {
                                                     {"real/mesquite/hexes_4by2by2.vtk", 16}};
   for (const auto& name : files) {
     SCOPED_TRACE(name);
-    const auto file = primal::read_mesh(fs::path(STCWEAVE_SHARED_DATA) / name);
+    const auto file = primal::read_mesh(test::shared_data() / name);
     primal::MeshOptions options;
     options.weave.check = file.quads.size() + file.hexes.size() < 300;
     primal::MeshResult r;
