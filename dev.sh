@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # stcweave developer entry point.
-#   ./dev.sh run   install what is missing, build (Release, in build/), mesh data/lblock.obj
-#   ./dev.sh test  install what is missing, build, run the whole test suite (ctest)
+#   ./dev.sh run   install what is missing, build the stcweave program only (Release, in
+#                  build/), mesh data/lblock.obj
+#   ./dev.sh test  install what is missing, build everything (tests, benchmarks), run the
+#                  whole test suite (ctest); the reason of every skipped test is printed
 #   ./dev.sh build install what is missing, build
 #   ./dev.sh lint  also install clang-format and clang-tidy; check the formatting of every
 #                  C++ file and run clang-tidy (.clang-tidy) on the libraries and the CLI
@@ -34,12 +36,32 @@ install_missing() {
   $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
 }
 
-build() {
+configure() {
   install_missing "$@"
   if [ ! -f "$BUILD_DIR/CMakeCache.txt" ]; then
     cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release
   fi
+}
+
+build() {
+  configure "$@"
   cmake --build "$BUILD_DIR" -j "$JOBS"
+}
+
+# ctest prints "***Skipped" without the reason, which only the test binary prints: list
+# every skipped test with the message GoogleTest gave (the line after "Skipped").
+print_skip_reasons() {
+  local log=Testing/Temporary/LastTest.log
+  [ -f "$log" ] || return 0
+  awk '
+    /: Skipped$/ { getline reason; pending = reason; next }
+    /^\[  SKIPPED \] / && pending != "" {
+      name = $4; sub(/ \(.*/, "", name)
+      if (!(name in seen)) { seen[name] = 1; printf "  %s: %s\n", name, pending; n++ }
+      pending = ""
+    }
+    END { if (n > 0) printf "dev.sh: %d test(s) skipped, with their reasons above\n", n }
+  ' "$log" | { IFS= read -r first || exit 0; echo "dev.sh: skipped tests:"; echo "$first"; cat; }
 }
 
 cmd=${1:-}
@@ -47,7 +69,8 @@ case "$cmd" in
   build)
     build ;;
   run)
-    build
+    configure
+    cmake --build "$BUILD_DIR" -j "$JOBS" --target stcweave
     mkdir -p "$BUILD_DIR/out"
     echo "dev.sh: meshing the bundled input data/lblock.obj"
     "$BUILD_DIR/bin/stcweave" mesh data/lblock.obj -o "$BUILD_DIR/out/lblock.vtk" \
@@ -55,7 +78,10 @@ case "$cmd" in
   test)
     build
     cd "$BUILD_DIR"
-    ctest --output-on-failure -j "$JOBS" ;;
+    status=0
+    ctest --output-on-failure -j "$JOBS" || status=$?
+    print_skip_reasons
+    exit "$status" ;;
   lint)
     build clang-format clang-tidy
     status=0
