@@ -208,6 +208,35 @@ class StdoutCapture {
   int saved_ = -1;
 };
 
+/// While alive, the process's standard output goes to standard error (when `active`): with
+/// `CadOptions::verbose`, Gmsh's and OpenCASCADE's messages must not mix with a program's
+/// own output on stdout.
+class StdoutToStderr {
+ public:
+  explicit StdoutToStderr(bool active) {
+    if (!active) return;
+    std::fflush(stdout);
+    saved_ = dup(STDOUT_FILENO);
+    if (saved_ >= 0 && dup2(STDERR_FILENO, STDOUT_FILENO) < 0) {
+      close(saved_);
+      saved_ = -1;
+    }
+  }
+  StdoutToStderr(const StdoutToStderr&) = delete;
+  StdoutToStderr& operator=(const StdoutToStderr&) = delete;
+  StdoutToStderr(StdoutToStderr&&) = delete;
+  StdoutToStderr& operator=(StdoutToStderr&&) = delete;
+  ~StdoutToStderr() {
+    if (saved_ < 0) return;
+    std::fflush(stdout);
+    dup2(saved_, STDOUT_FILENO);
+    close(saved_);
+  }
+
+ private:
+  int saved_ = -1;
+};
+
 /// Gmsh's logged messages since the last call, split into errors and warnings.
 struct GmshLog {
   std::vector<std::string> errors;
@@ -594,6 +623,7 @@ template <typename Body>
 CadSurface with_gmsh(const CadOptions& options, Body body) {
   GmshSession& session = GmshSession::instance();
   const std::lock_guard<std::mutex> lock(session.mutex);
+  const StdoutToStderr redirect(options.verbose);
   gmsh::clear();
   set_common_options(options);
   gmsh::logger::start();

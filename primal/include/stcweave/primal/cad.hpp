@@ -56,9 +56,10 @@ struct CadOptions {
   double size = 0.0;
   /// Which recipe; `Auto` by default.
   CadRecipe recipe = CadRecipe::Auto;
-  /// Let Gmsh (and OpenCASCADE's readers) print their messages (Gmsh on stdout, as it
-  /// does); false by default: they are captured, and the errors among them end up in the
-  /// exceptions' messages.
+  /// Let Gmsh (and OpenCASCADE's readers) print their messages, on standard error (the
+  /// process's stdout is sent there while Gmsh works); false by default: Gmsh is silenced
+  /// (`General.Terminal` 0, its messages go to its logger) and what OpenCASCADE prints is
+  /// captured, the errors among them ending up in the exceptions' messages.
   bool verbose = false;
 };
 
