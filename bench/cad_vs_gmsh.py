@@ -3,8 +3,9 @@
 
     bench/cad_vs_gmsh.py [--stcweave build/bin/stcweave] [--out build/cad_vs_gmsh] [--size H ...]
 
-For each of cube (1 x 1 x 1), L-block (2 x 2 x 1 minus a 1 x 1 x 1 quarter), cylinder (radius
-0.5, height 1) and sphere (radius 0.5), written as STEP by data/make_cad_examples.py:
+For each of cube (1 x 1 x 1), L-block (2 x 2 x 1 minus a 1 x 1 x 1 quarter; once as one solid,
+once as three unit boxes glued face to face), cylinder (radius 0.5, height 1) and sphere
+(radius 0.5), written as STEP by data/make_cad_examples.py:
 - ours:  stcweave mesh SOLID.step -o ours.vtk --size H  (quads of edge ~H);
 - Gmsh:  gmsh SOLID.step -3 with Mesh.SubdivisionAlgorithm 2 (tets split into 4 hexes each)
   and Mesh.MeshSizeMax 2H, Mesh.MeshSizeFromPoints 0: the split halves the tets' edges, so its
@@ -22,7 +23,7 @@ import sys
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-SHAPES = ["cube", "lblock", "cylinder", "sphere"]
+SHAPES = ["cube", "lblock", "lblock_blocks", "cylinder", "sphere"]
 
 
 def run(cmd, timeout):

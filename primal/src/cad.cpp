@@ -427,6 +427,20 @@ CadSurface mesh_current_model(const CadOptions& options, CadRecord record) {
                        " faces and no volume (an open shell or loose faces); export the part as "
                        "a solid (a closed shell made into a volume)");
   }
+  if (volumes.size() > 1) {
+    // Solids of an assembly touch without sharing their faces (a STEP file keeps each
+    // solid's own copy): make the model conforming, so that the boundary of the union below
+    // leaves the faces between two solids out instead of meshing both copies.
+    try {
+      gmsh::model::occ::removeAllDuplicates();
+      gmsh::model::occ::synchronize();
+    } catch (...) {
+      throw InvalidInput(record.path + ": Gmsh could not merge its " +
+                         std::to_string(volumes.size()) + " solids into one: " + gmsh_reason() +
+                         "; export the part as one solid");
+    }
+    gmsh::model::getEntities(volumes, 3);
+  }
   record.volumes = volumes.size();
   // The boundary of the union of the volumes (faces between two volumes are left out).
   gmsh::vectorpair boundary;
@@ -724,6 +738,16 @@ CadSurface mesh_cad_surface(const CadPrimitive& primitive, const CadOptions& opt
           gmsh::vectorpair out;
           std::vector<gmsh::vectorpair> map;
           gmsh::model::occ::cut({{3, whole}}, {{3, corner}}, out, map);
+          break;
+        }
+        case CadPrimitive::Kind::LBlockBlocks: {
+          record.path = "generated L-block of three blocks";
+          const int first = gmsh::model::occ::addBox(0, 0, 0, a / 2, b / 2, c);
+          const int second = gmsh::model::occ::addBox(a / 2, 0, 0, a / 2, b / 2, c);
+          const int third = gmsh::model::occ::addBox(0, b / 2, 0, a / 2, b / 2, c);
+          gmsh::vectorpair out;
+          std::vector<gmsh::vectorpair> map;
+          gmsh::model::occ::fragment({{3, first}}, {{3, second}, {3, third}}, out, map);
           break;
         }
       }

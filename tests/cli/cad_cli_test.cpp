@@ -63,6 +63,24 @@ TEST_F(CadCli, PlateWithASlotIsMeshedAndItsSurfaceWritten) {
   EXPECT_EQ(report2["cad"], nullptr);
 }
 
+TEST_F(CadCli, AnAssemblyOfThreeBlocksIsMergedAndStructured) {
+  SKIP_WITHOUT_GMSH();
+  const auto r = run_cli("mesh " + data("lblock_blocks.step") + " -o " + at("l.vtk") +
+                         " --size 0.25 --report " + at("l.json"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("transfinite surface"));
+  const nlohmann::json report = nlohmann::json::parse(slurp(at("l.json")));
+  EXPECT_EQ(report["cad"]["volumes"], 3);
+  // The faces the STEP file holds twice (one copy per block) are merged and left out.
+  EXPECT_EQ(report["cad"]["faces"], 14);
+  EXPECT_EQ(report["quads"], 224);
+  EXPECT_EQ(report["hexes"], 192);
+  EXPECT_EQ(report["valid"], true);
+  EXPECT_EQ(report["quality"]["inverted"], 0);
+  const auto check = run_cli("check " + at("l.vtk"));
+  EXPECT_EQ(check.code, 0) << check.out;
+}
+
 TEST_F(CadCli, SameCadInputGivesTheSameBytes) {
   SKIP_WITHOUT_GMSH();
   for (const char* name : {"a.vtk", "b.vtk"}) {

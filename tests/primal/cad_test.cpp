@@ -168,6 +168,22 @@ TEST(Cad, LBlockHasANonQuadrilateralFaceSoItIsSplit) {
   EXPECT_TRUE(r.validation.valid) << r.validation.summary();
 }
 
+TEST(Cad, LBlockBuiltOfThreeBlocksIsTransfiniteAndStructured) {
+  SKIP_WITHOUT_GMSH();
+  CadOptions options;
+  options.size = 0.25;
+  const CadSurface cad =
+      mesh_cad_surface(CadPrimitive{CadPrimitive::Kind::LBlockBlocks, 2, 2, 1}, options);
+  EXPECT_EQ(cad.record.recipe, CadRecipe::Transfinite);
+  EXPECT_EQ(cad.record.volumes, 3u);
+  EXPECT_EQ(cad.record.faces, 14u);  // the boundary of the union: glued faces left out
+  const MeshResult r = mesh_cad(cad, true);
+  EXPECT_TRUE(r.validation.valid) << r.validation.summary();
+  EXPECT_EQ(r.mesh.complex.hexes.size(), 192u);  // 3 blocks of 4 x 4 x 4
+  EXPECT_EQ(r.quality.inverted, 0u);
+  EXPECT_NEAR(r.quality.min_scaled_jacobian, 1.0, 1e-9);
+}
+
 TEST(Cad, TransfiniteOnACylinderIsRefusedNamingTheFace) {
   SKIP_WITHOUT_GMSH();
   CadOptions options;

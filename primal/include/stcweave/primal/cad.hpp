@@ -100,6 +100,9 @@ struct CadPrimitive {
     Cylinder,  ///< radius `a`, height `b`, axis z from the origin
     Sphere,    ///< radius `a`, centred at the origin
     LBlock,    ///< an `a` x `b` x `c` box with the quarter x > a/2, y > b/2 removed
+    /// The same L-block as three boxes glued face to face (OpenCASCADE's fragment), as a
+    /// block-structured CAD model is built: every face of the three has four corners.
+    LBlockBlocks,
   };
   Kind kind = Kind::Box;
   double a = 1.0;
