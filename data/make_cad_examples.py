@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """Writes the CAD examples of data/ with Gmsh's OpenCASCADE kernel (Debian: python3-gmsh).
 
-    data/make_cad_examples.py              writes data/plate_slot.step, data/open_shell.step and
-                                           data/lblock_blocks.step
+    data/make_cad_examples.py              writes data/plate_slot.step, data/lblock_blocks.step,
+                                           data/open_shell.step and data/closed_shell.step
     data/make_cad_examples.py --shapes DIR writes cube, lblock, lblock_blocks (the same L-block
                                            as three glued boxes), cylinder and sphere .step
                                            files into DIR (for bench/cad_vs_gmsh.py)
@@ -12,7 +12,8 @@ with a round end; the slot is open on the side, so the solid has genus 0.
 lblock_blocks.step: a 2 x 2 x 1 L-block as three unit boxes glued face to face, each solid
 with its own copy of the faces it shares (as STEP assemblies are), every face four-sided.
 open_shell.step: a unit cube's boundary with one face missing: five faces and no volume, the
-input stcweave must refuse ("not a closed solid").
+input stcweave must refuse ("not a closed solid"); closed_shell.step: all six faces and no
+volume, which stcweave sews into a solid (as IGES files, which rarely hold solids, need).
 The system python is named on purpose: python3-gmsh installs the module there.
 """
 import os
@@ -37,6 +38,12 @@ def open_shell(occ):
     occ.synchronize()
     occ.remove([(3, 1)])
     occ.remove([(2, 6)])
+
+
+def closed_shell(occ):
+    occ.addBox(0, 0, 0, 1, 1, 1)
+    occ.synchronize()
+    occ.remove([(3, 1)])
 
 
 def shapes(occ, name):
@@ -76,6 +83,7 @@ def main():
         here = os.path.dirname(os.path.abspath(__file__))
         write(os.path.join(here, "plate_slot.step"), plate_slot)
         write(os.path.join(here, "open_shell.step"), open_shell)
+        write(os.path.join(here, "closed_shell.step"), closed_shell)
         write(os.path.join(here, "lblock_blocks.step"), shapes, "lblock_blocks")
     else:
         print(__doc__, file=sys.stderr)

@@ -424,8 +424,8 @@ CadSurface mesh_current_model(const CadOptions& options, CadRecord record) {
     }
     throw InvalidInput(record.path + ": not a closed solid: it holds " +
                        std::to_string(all_faces.size()) +
-                       " faces and no volume (an open shell or loose faces); export the part as "
-                       "a solid (a closed shell made into a volume)");
+                       " faces and no volume, and sewing them makes no closed shell (an open "
+                       "shell or loose faces); export the part as a solid");
   }
   if (volumes.size() > 1) {
     // Solids of an assembly touch without sharing their faces (a STEP file keeps each
@@ -508,7 +508,7 @@ CadSurface mesh_current_model(const CadOptions& options, CadRecord record) {
                        "; check the CAD model, or try another --size or --cad-recipe");
   }
   const GmshLog log = take_log();
-  record.warnings = log.warnings;
+  record.warnings.insert(record.warnings.end(), log.warnings.begin(), log.warnings.end());
   if (!log.errors.empty()) {
     throw InvalidInput(record.path + ": Gmsh reported errors while meshing the surface: " +
                        join(log.errors, "; ") +
@@ -699,6 +699,36 @@ CadSurface mesh_cad_surface(const std::filesystem::path& path, const CadOptions&
       }
     }
     take_log();
+    // Files that hold faces but no solid (IGES files usually do, some STEP exporters too):
+    // read again, sewing the faces and making solids of the closed shells. An open shell
+    // stays without a volume and is refused below.
+    gmsh::vectorpair volumes;
+    gmsh::vectorpair faces;
+    gmsh::model::getEntities(volumes, 3);
+    gmsh::model::getEntities(faces, 2);
+    if (volumes.empty() && !faces.empty()) {
+      gmsh::clear();
+      gmsh::option::setNumber("Geometry.OCCSewFaces", 1);
+      gmsh::option::setNumber("Geometry.OCCMakeSolids", 1);
+      try {
+        const StdoutCapture quiet(!options.verbose);
+        gmsh::model::occ::importShapes(path.string(), imported, true, format);
+        gmsh::model::occ::synchronize();
+      } catch (...) {
+        throw InvalidInput(path.string() + ": Gmsh could not sew its " +
+                           std::to_string(faces.size()) + " faces into a solid: " + gmsh_reason() +
+                           "; export the part as a solid");
+      }
+      gmsh::option::setNumber("Geometry.OCCSewFaces", 0);
+      gmsh::option::setNumber("Geometry.OCCMakeSolids", 0);
+      take_log();
+      gmsh::model::getEntities(volumes, 3);
+      if (!volumes.empty()) {
+        record.warnings.push_back("the file holds " + std::to_string(faces.size()) +
+                                  " faces and no solid: they were sewn into " +
+                                  std::to_string(volumes.size()) + " solid(s)");
+      }
+    }
     record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return mesh_current_model(options, std::move(record));
   });

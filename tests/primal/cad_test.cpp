@@ -258,6 +258,20 @@ TEST(Cad, AnOpenShellIsNotAClosedSolid) {
   }
 }
 
+TEST(Cad, AClosedShellWithoutAVolumeIsSewnIntoASolid) {
+  SKIP_WITHOUT_GMSH();
+  CadOptions options;
+  options.size = 0.5;
+  const CadSurface cad = mesh_cad_surface(data("closed_shell.step"), options);
+  EXPECT_EQ(cad.record.volumes, 1u);
+  ASSERT_FALSE(cad.record.warnings.empty());
+  EXPECT_THAT(cad.record.warnings.front(), HasSubstr("sewn into 1 solid"));
+  EXPECT_EQ(cad.record.recipe, CadRecipe::Transfinite);
+  const MeshResult r = mesh_cad(cad, true);
+  EXPECT_TRUE(r.validation.valid) << r.validation.summary();
+  EXPECT_EQ(r.mesh.complex.hexes.size(), 8u);
+}
+
 TEST(Cad, GarbageIsRefusedWithTheReadersReason) {
   SKIP_WITHOUT_GMSH();
   const fs::path path = fs::temp_directory_path() / "stcweave_cad_garbage.step";
