@@ -480,11 +480,75 @@ CadSurface mesh_current_model(const CadOptions& options, CadRecord record) {
                       "corners, but " +
                       transfinite_reason + "; use --cad-recipe triangle-split or auto");
   }
+  // Generates the surface mesh with the options set; returns why it failed ("" when every
+  // element of the boundary faces is a quad), with the quads in `quads`.
+  CadSurface out;
+  std::vector<std::array<std::size_t, 4> > quads;
+  const auto generate = [&]() -> std::string {
+    quads.clear();
+    take_log();
+    try {
+      gmsh::model::mesh::generate(2);
+    } catch (...) {
+      const std::string reason = gmsh_reason();
+      const GmshLog log = take_log();
+      return reason + (log.errors.empty() ? "" : " [" + join(log.errors, "; ") + "]");
+    }
+    const GmshLog log = take_log();
+    record.warnings.insert(record.warnings.end(), log.warnings.begin(), log.warnings.end());
+    if (!log.errors.empty()) return join(log.errors, "; ");
+    std::size_t non_quads = 0;
+    for (const int f : faces) {
+      std::vector<int> types;
+      std::vector<std::vector<std::size_t> > element_tags;
+      std::vector<std::vector<std::size_t> > node_tags;
+      gmsh::model::mesh::getElements(types, element_tags, node_tags, 2, f);
+      for (std::size_t k = 0; k < types.size(); ++k) {
+        if (types[k] != 3) {  // 3: 4-node quadrangle
+          non_quads += element_tags[k].size();
+          continue;
+        }
+        // Sort by element tag so the order does not depend on Gmsh's internal storage.
+        std::vector<std::size_t> order(element_tags[k].size());
+        std::iota(order.begin(), order.end(), std::size_t{0});
+        std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+          return element_tags[k][x] < element_tags[k][y];
+        });
+        for (const std::size_t e : order)
+          quads.push_back({node_tags[k][4 * e], node_tags[k][4 * e + 1], node_tags[k][4 * e + 2],
+                           node_tags[k][4 * e + 3]});
+      }
+    }
+    if (non_quads > 0 || quads.empty()) {
+      return std::to_string(non_quads) + " elements that are not quads were left on the " +
+             "solid's boundary (" + std::to_string(quads.size()) + " quads)";
+    }
+    return "";
+  };
+  const auto fail = [&](const std::string& why) {
+    return InvalidInput(record.path + ": Gmsh could not mesh the surface of the solid (" +
+                        std::string(cad_recipe_name(record.recipe)) + " recipe, size " +
+                        std::to_string(record.size) + "): " + why +
+                        "; check the CAD model, or try another --size or --cad-recipe");
+  };
+
+  bool split = !transfinite;
   if (transfinite) {
     record.recipe = CadRecipe::Transfinite;
     record.reason = transfinite_reason;
     gmsh::option::setNumber("Mesh.MeshSizeMax", record.size);
-  } else {
+    if (const std::string why = generate(); !why.empty()) {
+      if (options.recipe == CadRecipe::Transfinite) throw fail(why);
+      // Auto: Gmsh could not make the faces transfinite after all; split triangles instead.
+      record.warnings.push_back("transfinite meshing failed (" + why +
+                                "): the surface was made with triangle-split instead");
+      transfinite_reason = "transfinite meshing failed: " + why;
+      gmsh::model::mesh::clear();
+      gmsh::model::mesh::removeConstraints();
+      split = true;
+    }
+  }
+  if (split) {
     record.recipe = CadRecipe::TriangleSplit;
     record.reason = options.recipe == CadRecipe::TriangleSplit
                         ? "asked for"
@@ -493,60 +557,9 @@ CadSurface mesh_current_model(const CadOptions& options, CadRecord record) {
     // Splitting halves every triangle edge: triangles of twice the size give quads of it.
     gmsh::option::setNumber("Mesh.MeshSizeMax", 2.0 * record.size);
     gmsh::option::setNumber("Mesh.SubdivisionAlgorithm", 1);  // triangle -> 3 quads
+    if (const std::string why = generate(); !why.empty()) throw fail(why);
   }
 
-  take_log();
-  try {
-    gmsh::model::mesh::generate(2);
-  } catch (...) {
-    const std::string reason = gmsh_reason();
-    const GmshLog log = take_log();
-    throw InvalidInput(record.path + ": Gmsh could not mesh the surface of the solid (" +
-                       std::string(cad_recipe_name(record.recipe)) + " recipe, size " +
-                       std::to_string(record.size) + "): " + reason +
-                       (log.errors.empty() ? "" : " [" + join(log.errors, "; ") + "]") +
-                       "; check the CAD model, or try another --size or --cad-recipe");
-  }
-  const GmshLog log = take_log();
-  record.warnings.insert(record.warnings.end(), log.warnings.begin(), log.warnings.end());
-  if (!log.errors.empty()) {
-    throw InvalidInput(record.path + ": Gmsh reported errors while meshing the surface: " +
-                       join(log.errors, "; ") +
-                       "; check the CAD model, or try another --size or --cad-recipe");
-  }
-
-  // Collect the quads of the boundary faces.
-  CadSurface out;
-  std::vector<std::array<std::size_t, 4> > quads;
-  std::size_t non_quads = 0;
-  for (const int f : faces) {
-    std::vector<int> types;
-    std::vector<std::vector<std::size_t> > element_tags;
-    std::vector<std::vector<std::size_t> > node_tags;
-    gmsh::model::mesh::getElements(types, element_tags, node_tags, 2, f);
-    for (std::size_t k = 0; k < types.size(); ++k) {
-      if (types[k] != 3) {  // 3: 4-node quadrangle
-        non_quads += element_tags[k].size();
-        continue;
-      }
-      // Sort by element tag so the order does not depend on Gmsh's internal storage.
-      std::vector<std::size_t> order(element_tags[k].size());
-      std::iota(order.begin(), order.end(), std::size_t{0});
-      std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
-        return element_tags[k][x] < element_tags[k][y];
-      });
-      for (const std::size_t e : order)
-        quads.push_back({node_tags[k][4 * e], node_tags[k][4 * e + 1], node_tags[k][4 * e + 2],
-                         node_tags[k][4 * e + 3]});
-    }
-  }
-  if (non_quads > 0 || quads.empty()) {
-    throw InternalError(record.path + ": the " + std::string(cad_recipe_name(record.recipe)) +
-                        " recipe left " + std::to_string(non_quads) +
-                        " elements that are not quads on the solid's boundary (" +
-                        std::to_string(quads.size()) +
-                        " quads); this is a bug: please report it with the CAD file");
-  }
   record.quads = quads.size();
   record.triangles = record.recipe == CadRecipe::TriangleSplit ? quads.size() / 3 : 0;
 

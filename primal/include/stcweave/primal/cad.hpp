@@ -17,8 +17,9 @@
 ///   target size, each split into three quads (`Mesh.SubdivisionAlgorithm` 1 with no
 ///   recombination; checked in Gmsh 4.8.4: the quads are exactly three times the
 ///   triangles), so the quads' edges are about the target size.
-/// `Auto` takes `Transfinite` when every face qualifies, `TriangleSplit` otherwise, and says
-/// why in the record. Mixing the two on one solid is not done: a loop leaving a structured
+/// `Auto` takes `Transfinite` when every face qualifies (falling back to `TriangleSplit`, with
+/// a warning, should Gmsh's transfinite meshing still fail), `TriangleSplit` otherwise, and
+/// says why in the record. Mixing the two on one solid is not done: a loop leaving a structured
 /// face into a split one is not known to stay clean.
 ///
 /// Without Gmsh at build time (CMake option `STCWEAVE_WITH_GMSH=OFF`) every function here
