@@ -22,6 +22,12 @@
 /// says why in the record. Mixing the two on one solid is not done: a loop leaving a structured
 /// face into a split one is not known to stay clean.
 ///
+/// Side effect a library user should know: while Gmsh reads a file, the process's standard
+/// output (file descriptor 1) is redirected into a temporary file, because OpenCASCADE's
+/// readers print there past Gmsh's own settings; with `CadOptions::verbose` it is sent to
+/// standard error for the whole call instead. Other threads printing on stdout meanwhile
+/// are redirected too.
+///
 /// Without Gmsh at build time (CMake option `STCWEAVE_WITH_GMSH=OFF`) every function here
 /// that needs Gmsh throws `Unsupported` with `cad_unavailable_message`.
 
