@@ -12,7 +12,8 @@ set -euo pipefail
 cd "$(dirname "$0")"
 
 PACKAGES=(cmake g++ make pkg-config libboost-graph-dev libeigen3-dev nlohmann-json3-dev
-  libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev liblbfgspp-dev)
+  libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev liblbfgspp-dev
+  libgmsh-dev)
 BUILD_DIR=${STCWEAVE_BUILD_DIR:-build}
 JOBS=${STCWEAVE_JOBS:-$(nproc 2>/dev/null || echo 2)}
 

@@ -10,6 +10,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "cad_input.hpp"
 #include "commands.hpp"
 #include "stcweave/primal/io.hpp"
 #include "stcweave/primal/pipeline.hpp"
@@ -42,6 +43,7 @@ struct MeshArgs {
   int position_newton_steps = primal::PositionOptions{}.max_newton_steps;
   double position_theta = 0.5;
   int certify_depth = 4;
+  CadArgs cad;  // CAD input: --size, --cad-recipe, --surface-out
 };
 
 /// The position report as JSON (hex ids as "h12").
@@ -178,9 +180,12 @@ int run_mesh(const MeshArgs& a) {
   const primal::Format out_format = a.output_format == "auto"
                                         ? primal::format_from_path(a.output)
                                         : primal::format_from_name(a.output_format);
-  const primal::MeshFile file = primal::read_mesh(
+  // A CAD input is meshed into a quad surface first (cad_input.hpp); any other is read.
+  const InputSurface input = read_input(
       a.input,
-      a.input_format == "auto" ? primal::Format::Auto : primal::format_from_name(a.input_format));
+      a.input_format == "auto" ? primal::Format::Auto : primal::format_from_name(a.input_format),
+      a.cad, a.progress, a.quiet);
+  const primal::MeshFile& file = input.file;
   const primal::MeshResult r = [&] {
     try {
       return primal::mesh_file(file, options);
@@ -208,6 +213,7 @@ int run_mesh(const MeshArgs& a) {
   nlohmann::json report;
   report["input"] = a.input;
   report["output"] = write_mesh ? nlohmann::json(a.output) : nlohmann::json(nullptr);
+  report["cad"] = input.cad ? cad_json(*input.cad) : nlohmann::json(nullptr);
   report["rules"] = a.weave.rules;
   report["weave_options"] = weave_options_json(options.weave);
   report["quads"] = r.surface.surface.quads.size();
@@ -297,7 +303,9 @@ Action add_mesh_command(CLI::App& app) {
       "Fill a closed quad surface with hexahedra: read IN (a quad surface, or a hex mesh whose "
       "boundary is taken), weave its STC, check the hex complex (an invalid complex is never "
       "written: exit code 3), place interior nodes, write OUT.");
-  sub->add_option("input", args->input, "input surface (OBJ, OFF, VTK, VTU, MSH, MEDIT, MFEM)")
+  sub->add_option("input", args->input,
+                  "input surface (OBJ, OFF, VTK, VTU, MSH, MEDIT, MFEM) or CAD solid (STEP, "
+                  "BREP, IGES)")
       ->required();
   sub->add_option("-o,--output", args->output,
                   "output hex mesh; format from the extension (.vtk .vtu .msh .mesh .inp)")
@@ -306,6 +314,7 @@ Action add_mesh_command(CLI::App& app) {
   sub->add_option("--output-format", args->output_format,
                   "output format name: vtk, vtu, msh, msh2, medit, inp (default: auto)");
   add_weave_options(sub, args->weave);
+  add_cad_options(sub, args->cad, args->input);
   sub->add_option("--report", args->report,
                   "write a JSON report (hexes, nodes, interior_nodes, valid, sheets, chords, "
                   "quality, position report, seconds per stage)");

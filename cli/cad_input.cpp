@@ -1,0 +1,86 @@
+#include "cad_input.hpp"
+
+#include <iostream>
+
+#include "stcweave/primal/diagnose.hpp"
+
+namespace stcweave::cli {
+
+void add_cad_options(CLI::App* sub, CadArgs& args, const std::string& input) {
+  const std::string group = "CAD input (STEP, BREP, IGES)";
+  CLI::Option* size =
+      sub->add_option("--size", args.size,
+                      "CAD input: target edge length of the surface quads (default: a tenth of "
+                      "the solid's bounding box diagonal)")
+          ->check(CLI::PositiveNumber)
+          ->group(group);
+  CLI::Option* recipe =
+      sub->add_option("--cad-recipe", args.recipe,
+                      "CAD input: auto (transfinite when every CAD face has 4 corners, else "
+                      "triangle-split), transfinite, or triangle-split (Gmsh triangles, each "
+                      "split into 3 quads)")
+          ->check(CLI::IsMember({"auto", "transfinite", "triangle-split"}))
+          ->capture_default_str()
+          ->group(group);
+  sub->add_option("--surface-out", args.surface_out,
+                  "write the quad surface that is woven (.obj, .off, .vtk): for a CAD input, "
+                  "the surface Gmsh made")
+      ->group(group);
+  sub->parse_complete_callback([size, recipe, &input] {
+    if ((size->count() > 0 || recipe->count() > 0) && !primal::is_cad_path(input)) {
+      throw CLI::ValidationError("--size/--cad-recipe",
+                                 "apply to CAD inputs only (.step, .stp, .brep, .iges, .igs), "
+                                 "not to " +
+                                     input);
+    }
+  });
+}
+
+InputSurface read_input(const std::string& input, primal::Format format, const CadArgs& args,
+                        bool progress, bool quiet) {
+  InputSurface in;
+  if (primal::is_cad_path(input) && format == primal::Format::Auto) {
+    primal::CadOptions options;
+    options.size = args.size;
+    options.recipe = primal::cad_recipe_from_name(args.recipe);
+    options.verbose = progress;
+    primal::CadSurface cad = primal::mesh_cad_surface(input, options);
+    in.file = std::move(cad.file);
+    in.cad = std::move(cad.record);
+    if (!quiet) {
+      const primal::CadRecord& r = *in.cad;
+      std::cout << "cad        " << r.volumes << " solid(s), " << r.faces
+                << " faces: " << primal::cad_recipe_name(r.recipe) << " surface, size " << r.size
+                << ", " << r.quads << " quads (" << r.reason << ")\n";
+    }
+  } else {
+    in.file = primal::read_mesh(input, format);
+  }
+  if (!args.surface_out.empty()) {
+    primal::SurfaceMesh surface = primal::surface_of(in.file);
+    const primal::SurfaceDiagnosis d = primal::diagnose(in.file);
+    if (d.closed && d.manifold && d.orientable.value_or(false)) primal::orient_outward(surface);
+    primal::write_surface(surface, args.surface_out);
+  }
+  return in;
+}
+
+nlohmann::json cad_json(const primal::CadRecord& r) {
+  return {{"path", r.path},
+          {"format", r.format},
+          {"gmsh_version", r.gmsh_version},
+          {"recipe", primal::cad_recipe_name(r.recipe)},
+          {"reason", r.reason},
+          {"size", r.size},
+          {"volumes", r.volumes},
+          {"faces", r.faces},
+          {"curves", r.curves},
+          {"triangles", r.triangles},
+          {"quads", r.quads},
+          {"nodes", r.nodes},
+          {"max_cad_distance", r.max_cad_distance},
+          {"warnings", r.warnings},
+          {"seconds", r.seconds}};
+}
+
+}  // namespace stcweave::cli
