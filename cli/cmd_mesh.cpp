@@ -36,6 +36,7 @@ struct MeshArgs {
   // Positioning (untangling) of the interior nodes.
   bool no_untangle = false;
   std::string start = "harmonic";
+  std::string pillow = "auto";
   int position_rounds = 100;
   int position_iterations = 3000;
   int position_newton_after = primal::PositionOptions{}.newton_after;
@@ -161,6 +162,7 @@ int run_mesh(const MeshArgs& a) {
   if (a.start != "layers" && a.start != "harmonic")
     throw InvalidInput("--start must be layers or harmonic, not '" + a.start + "'");
   options.layer_start = a.start == "layers";
+  options.pillow.mode = primal::pillow_mode_from_name(a.pillow);
   options.position.max_outer_iterations = a.position_rounds;
   options.position.max_inner_iterations = a.position_iterations;
   options.position.theta = a.position_theta;
@@ -224,6 +226,16 @@ int run_mesh(const MeshArgs& a) {
                        {"mean_scaled_jacobian", r.quality.mean_scaled_jacobian},
                        {"inverted", r.quality.inverted},
                        {"below_0_2", r.quality.below_0_2}};
+  report["pillow"] = {{"mode", primal::to_string(r.pillow.mode)},
+                      {"applied", r.pillow.applied},
+                      {"reason", r.pillow.reason},
+                      {"shells", r.pillow.shells},
+                      {"shells_pillowed", r.pillow.shells_pillowed},
+                      {"fixed_corners", r.pillow.fixed_corners},
+                      {"bad_fixed_corners", r.pillow.bad_fixed_corners},
+                      {"worst_fixed_corner", r.pillow.worst_fixed_corner},
+                      {"nodes_added", r.pillow.nodes_added},
+                      {"hexes_added", r.pillow.hexes_added}};
   report["untangled"] = options.untangle;
   if (options.untangle) report["position"] = position_json(r.position);
   const auto& s = r.woven.stats;
@@ -239,12 +251,17 @@ int run_mesh(const MeshArgs& a) {
                      {"rolled_back_shrinks", s.rolled_back_shrinks},
                      {"parallel_merges", s.parallel_merges},
                      {"nonconvexity_seams", s.nonconvexity_seams}};
-  report["seconds"] = {
-      {"diagnose", r.seconds.diagnose}, {"orient", r.seconds.orient},
-      {"weave", r.seconds.weave},       {"validate", r.seconds.validate},
-      {"recover", r.seconds.recover},   {"position", r.seconds.position},
-      {"quality", r.seconds.quality},   {"stc", stc_seconds},
-      {"write", write_seconds},         {"total", r.seconds.total() + stc_seconds + write_seconds}};
+  report["seconds"] = {{"diagnose", r.seconds.diagnose},
+                       {"orient", r.seconds.orient},
+                       {"weave", r.seconds.weave},
+                       {"validate", r.seconds.validate},
+                       {"recover", r.seconds.recover},
+                       {"pillow", r.seconds.pillow},
+                       {"position", r.seconds.position},
+                       {"quality", r.seconds.quality},
+                       {"stc", stc_seconds},
+                       {"write", write_seconds},
+                       {"total", r.seconds.total() + stc_seconds + write_seconds}};
 
   if (!a.report.empty()) write_text_atomically(a.report, report.dump(1) + "\n");
   if (!a.trace.empty()) write_text_atomically(a.trace, *trace_text);
@@ -255,6 +272,7 @@ int run_mesh(const MeshArgs& a) {
     std::cout << "\nhexes      " << r.mesh.complex.hexes.size() << " (" << report["interior_nodes"]
               << " interior nodes, " << stc.sheets.size() << " sheets, " << stc.chords.size()
               << " chords, " << blind_chords << " blind)\n";
+    std::cout << "pillow     " << r.pillow.reason << "\n";
     std::cout << "valid      " << (r.validation.valid ? "yes" : "NO: " + r.validation.summary())
               << "\n";
     std::cout << "quality    min scaled Jacobian " << r.quality.min_scaled_jacobian << ", mean "
@@ -271,6 +289,18 @@ int run_mesh(const MeshArgs& a) {
               << "\n";
   }
   if (!r.validation.valid) return kInternal;
+  if (!a.fail_on_inverted && r.quality.inverted > 0) {
+    // Not an error without --fail-on-inverted, but never silent: a solver rejects the mesh.
+    std::cerr << "stcweave: warning: " << r.quality.inverted << " of "
+              << r.mesh.complex.hexes.size()
+              << " hexes are still inverted after untangling (scaled Jacobian <= 0; "
+              << (options.untangle ? r.position.stop : std::string("--no-untangle"))
+              << "); the mesh was written; add --fail-on-inverted to make this an error"
+              << (r.pillow.applied || r.pillow.mode == primal::PillowMode::Always
+                      ? std::string()
+                      : std::string(", or try --pillow always"))
+              << "\n";
+  }
   if (inverted_left) {
     std::string ids;
     const std::vector<HexId>& bad = r.position.inverted;
@@ -326,6 +356,12 @@ Action add_mesh_command(CLI::App& app) {
                   "untangling starts from: harmonic, or layers (the weave's layer placement, or "
                   "the harmonic one when that has fewer inverted corners)")
       ->capture_default_str();
+  sub->add_option("--pillow", args->pillow,
+                  "pillow the boundary (a layer of hexes between each boundary quad and an "
+                  "interior copy of it): auto (only shells with a hex corner fixed by the "
+                  "boundary and flat or inverted), always, never")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "always", "never"}));
   sub->add_option("--position-rounds", args->position_rounds,
                   "untangling: most rounds of (minimise, lower epsilon)")
       ->capture_default_str()
