@@ -112,7 +112,7 @@ PillowReport assess_pillow(const HexMesh& mesh, std::size_t num_boundary_nodes,
       ++r.fixed_corners;
       const double sj = corner_scaled_jacobian(mesh.points, x, k);
       if (sj < options.min_fixed_corner) ++r.bad_fixed_corners;
-      if (sj < r.worst_fixed_corner) {
+      if (sj < r.worst_fixed_corner || !r.worst_hex.is_valid()) {
         r.worst_fixed_corner = sj;
         r.worst_hex = HexId(h);
         r.worst_corner = k;
