@@ -42,6 +42,9 @@ struct MeshArgs {
   int position_newton_after = primal::PositionOptions{}.newton_after;
   int position_newton_steps = primal::PositionOptions{}.max_newton_steps;
   double position_theta = 0.5;
+  int shape_sweeps = primal::PositionOptions{}.max_shape_sweeps;
+  double shape_target = primal::PositionOptions{}.shape_target;
+  double good_start = primal::PositionOptions{}.good_start;
   int certify_depth = 4;
 };
 
@@ -83,6 +86,18 @@ nlohmann::json position_json(const primal::PositionReport& p) {
           {"stop", p.stop},
           {"impossible_corners", impossible},
           {"inverted_hexes", inverted},
+          {"good_start", p.good_start},
+          {"min_scaled_jacobian_untangled", p.min_scaled_jacobian_untangled},
+          {"mean_scaled_jacobian_untangled", p.mean_scaled_jacobian_untangled},
+          {"shape",
+           {{"ran", p.shape.ran},
+            {"sweeps", p.shape.sweeps},
+            {"moves", p.shape.moves},
+            {"min_scaled_jacobian_before", p.shape.min_scaled_jacobian_before},
+            {"min_scaled_jacobian_after", p.shape.min_scaled_jacobian_after},
+            {"mean_scaled_jacobian_before", p.shape.mean_scaled_jacobian_before},
+            {"mean_scaled_jacobian_after", p.shape.mean_scaled_jacobian_after},
+            {"stop", p.shape.stop}}},
           {"seconds", p.seconds}};
 }
 
@@ -166,6 +181,9 @@ int run_mesh(const MeshArgs& a) {
   options.position.max_outer_iterations = a.position_rounds;
   options.position.max_inner_iterations = a.position_iterations;
   options.position.theta = a.position_theta;
+  options.position.max_shape_sweeps = a.shape_sweeps;
+  options.position.shape_target = a.shape_target;
+  options.position.good_start = a.good_start;
   options.position.newton_after = a.position_newton_after;
   options.position.max_newton_steps = a.position_newton_steps;
   options.position.certify_depth = a.certify_depth;
@@ -283,6 +301,14 @@ int run_mesh(const MeshArgs& a) {
     } else {
       std::cout << " (harmonic placement, not untangled)\n";
     }
+    if (options.untangle) {
+      std::cout << "shape      min scaled Jacobian " << r.position.min_scaled_jacobian_before
+                << " at the start, " << r.position.min_scaled_jacobian_untangled << " untangled, "
+                << r.position.min_scaled_jacobian_after << " after the shape phase (mean "
+                << r.position.mean_scaled_jacobian_before << ", "
+                << r.position.mean_scaled_jacobian_untangled << ", "
+                << r.position.mean_scaled_jacobian_after << "; " << r.position.shape.stop << ")\n";
+    }
     std::cout << "time       " << r.seconds.total() + stc_seconds + write_seconds << " s (weave "
               << r.seconds.weave << " s)\n";
     std::cout << "output     " << (write_mesh ? a.output : "not written (--fail-on-inverted)")
@@ -383,6 +409,20 @@ Action add_mesh_command(CLI::App& app) {
                   "untangling: weight of the volume term against the shape term, in [0, 1]")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
+  sub->add_option("--shape-sweeps", args->shape_sweeps,
+                  "shape phase after untangling: most sweeps of local max-min moves that raise "
+                  "the worst scaled Jacobian (0: off)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100000));
+  sub->add_option("--shape-target", args->shape_target,
+                  "shape phase: hexes below this scaled Jacobian are worked on")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  sub->add_option("--good-start", args->good_start,
+                  "positioning keeps a start with no inverted corner whose min scaled Jacobian "
+                  "is at least this (no untangling rounds; above 1: never)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 2.0));
   sub->add_option("--certify-depth", args->certify_depth,
                   "subdivision depth of the Bezier validity certification of every hex")
       ->capture_default_str()
