@@ -11,7 +11,7 @@ which is how CAD usually becomes an all-hex mesh. The script writes, per case NA
 and one summary, gmsh_hex_boundaries.json: per case Gmsh's hex count, boundary quad count and
 the minimum and mean scaled Jacobian of Gmsh's hexes (Verdict's corner definition, computed
 here: Gmsh 4.8's Python API has no getElementQualities).
-Needs python3-gmsh (Debian: apt install python3-gmsh; dev.sh installs it).
+Needs python3-gmsh (Debian: apt install python3-gmsh); not needed to build or test.
 Deterministic for a given Gmsh version (one thread, fixed options).
 """
 import json
