@@ -34,11 +34,14 @@ void check_nodes(const HexMesh& mesh) {
                        " rows for a complex of " + std::to_string(mesh.complex.num_nodes) +
                        " nodes");
   }
-  for (std::size_t h = 0; h < mesh.complex.hexes.size(); ++h)
-    for (const NodeId v : mesh.complex.hexes[h])
-      if (!v.is_valid() || v.index() >= n)
+  for (std::size_t h = 0; h < mesh.complex.hexes.size(); ++h) {
+    for (const NodeId v : mesh.complex.hexes[h]) {
+      if (!v.is_valid() || v.index() >= n) {
         throw InvalidInput("pillow: hex " + HexId(h).str() + " names node " + v.str() +
                            ", outside the " + std::to_string(n) + " nodes");
+      }
+    }
+  }
 }
 
 /// Per node of `surface`, the index of its connected component (-1 for a node no quad uses);
@@ -50,12 +53,13 @@ std::vector<int> shell_of_nodes(const stc::QuadSurface& surface, std::size_t* sh
     while (parent[x] != x) x = parent[x] = parent[parent[x]];
     return x;
   };
-  for (const auto& q : surface.quads)
+  for (const auto& q : surface.quads) {
     for (int i = 1; i < 4; ++i) {
       const std::size_t a = find(q[0].index());
       const std::size_t b = find(q[static_cast<std::size_t>(i)].index());
       if (a != b) parent[std::max(a, b)] = std::min(a, b);
     }
+  }
   std::vector<int> label(surface.num_nodes, -1);
   std::vector<int> root_label(surface.num_nodes, -1);
   int next = 0;
@@ -130,11 +134,14 @@ PillowReport pillow(HexMesh& mesh, const stc::QuadSurface& boundary, const Pillo
   const std::size_t nb = boundary.num_nodes;
   if (nb > mesh.complex.num_nodes)
     throw InvalidInput("pillow: the boundary has more nodes than the complex");
-  for (std::size_t q = 0; q < boundary.quads.size(); ++q)
-    for (const NodeId v : boundary.quads[q])
-      if (!v.is_valid() || v.index() >= nb)
+  for (std::size_t q = 0; q < boundary.quads.size(); ++q) {
+    for (const NodeId v : boundary.quads[q]) {
+      if (!v.is_valid() || v.index() >= nb) {
         throw InvalidInput("pillow: boundary quad " + QuadId(q).str() + " names node " + v.str() +
                            ", outside the boundary's " + std::to_string(nb) + " nodes");
+      }
+    }
+  }
 
   PillowReport r = assess_pillow(mesh, nb, options);
   std::vector<int> shell = shell_of_nodes(boundary, &r.shells);
