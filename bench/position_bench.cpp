@@ -8,6 +8,8 @@
 //   case; newton_after 0 is L-BFGS alone, 100 adds projected Newton steps to slow rounds
 //   (n = 20 with Newton takes about nine minutes: not run by default, docs/geometry.md).
 //
+// - BM_ShapePhaseScrambledBox/n: the shape phase alone on a valid scrambled box.
+//
 // Counters: hexes, inverted hexes before / after, min scaled Jacobian after, L-BFGS
 // iterations, Newton steps and rounds.
 #include <benchmark/benchmark.h>
@@ -76,6 +78,35 @@ BENCHMARK(BM_PositionBentBox)
     ->Args({32, 0})
     ->Args({6, 100})
     ->Args({12, 100})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+
+/// The shape phase alone (`improve_shape`) on the n^3 box scrambled by 0.25 of the shortest
+/// edge (valid, min scaled Jacobian well below the 0.6 target, every node active). Target:
+/// 100k hexes (n = 46) under 10 s.
+void BM_ShapePhaseScrambledBox(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  primal::HexMesh start = test::box_hexes(n, n, n);
+  const std::vector<bool> fixed = test::boundary_nodes(start);
+  test::scramble(start, fixed, 0.25, 3);
+  primal::ShapeReport r;
+  for (auto _ : state) {
+    state.PauseTiming();
+    primal::HexMesh mesh = start;
+    state.ResumeTiming();
+    r = primal::improve_shape(mesh, fixed, {});
+    benchmark::DoNotOptimize(mesh.points.data());
+  }
+  state.counters["hexes"] = static_cast<double>(start.complex.hexes.size());
+  state.counters["min_sj_before"] = r.min_scaled_jacobian_before;
+  state.counters["min_sj_after"] = r.min_scaled_jacobian_after;
+  state.counters["sweeps"] = static_cast<double>(r.sweeps);
+  state.counters["moves"] = static_cast<double>(r.moves);
+}
+BENCHMARK(BM_ShapePhaseScrambledBox)
+    ->Arg(10)
+    ->Arg(22)
+    ->Arg(46)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 

@@ -37,11 +37,15 @@ struct MeshArgs {
   // Positioning (untangling) of the interior nodes.
   bool no_untangle = false;
   std::string start = "harmonic";
+  std::string pillow = "auto";
   int position_rounds = 100;
   int position_iterations = 3000;
   int position_newton_after = primal::PositionOptions{}.newton_after;
   int position_newton_steps = primal::PositionOptions{}.max_newton_steps;
   double position_theta = 0.5;
+  int shape_sweeps = primal::PositionOptions{}.max_shape_sweeps;
+  double shape_target = primal::PositionOptions{}.shape_target;
+  double good_start = primal::PositionOptions{}.good_start;
   int certify_depth = 4;
   CadArgs cad;  // CAD input: --size, --cad-recipe, --surface-out
 };
@@ -84,6 +88,18 @@ nlohmann::json position_json(const primal::PositionReport& p) {
           {"stop", p.stop},
           {"impossible_corners", impossible},
           {"inverted_hexes", inverted},
+          {"good_start", p.good_start},
+          {"min_scaled_jacobian_untangled", p.min_scaled_jacobian_untangled},
+          {"mean_scaled_jacobian_untangled", p.mean_scaled_jacobian_untangled},
+          {"shape",
+           {{"ran", p.shape.ran},
+            {"sweeps", p.shape.sweeps},
+            {"moves", p.shape.moves},
+            {"min_scaled_jacobian_before", p.shape.min_scaled_jacobian_before},
+            {"min_scaled_jacobian_after", p.shape.min_scaled_jacobian_after},
+            {"mean_scaled_jacobian_before", p.shape.mean_scaled_jacobian_before},
+            {"mean_scaled_jacobian_after", p.shape.mean_scaled_jacobian_after},
+            {"stop", p.shape.stop}}},
           {"seconds", p.seconds}};
 }
 
@@ -163,9 +179,13 @@ int run_mesh(const MeshArgs& a) {
   if (a.start != "layers" && a.start != "harmonic")
     throw InvalidInput("--start must be layers or harmonic, not '" + a.start + "'");
   options.layer_start = a.start == "layers";
+  options.pillow.mode = primal::pillow_mode_from_name(a.pillow);
   options.position.max_outer_iterations = a.position_rounds;
   options.position.max_inner_iterations = a.position_iterations;
   options.position.theta = a.position_theta;
+  options.position.max_shape_sweeps = a.shape_sweeps;
+  options.position.shape_target = a.shape_target;
+  options.position.good_start = a.good_start;
   options.position.newton_after = a.position_newton_after;
   options.position.max_newton_steps = a.position_newton_steps;
   options.position.certify_depth = a.certify_depth;
@@ -230,6 +250,16 @@ int run_mesh(const MeshArgs& a) {
                        {"mean_scaled_jacobian", r.quality.mean_scaled_jacobian},
                        {"inverted", r.quality.inverted},
                        {"below_0_2", r.quality.below_0_2}};
+  report["pillow"] = {{"mode", primal::to_string(r.pillow.mode)},
+                      {"applied", r.pillow.applied},
+                      {"reason", r.pillow.reason},
+                      {"shells", r.pillow.shells},
+                      {"shells_pillowed", r.pillow.shells_pillowed},
+                      {"fixed_corners", r.pillow.fixed_corners},
+                      {"bad_fixed_corners", r.pillow.bad_fixed_corners},
+                      {"worst_fixed_corner", r.pillow.worst_fixed_corner},
+                      {"nodes_added", r.pillow.nodes_added},
+                      {"hexes_added", r.pillow.hexes_added}};
   report["untangled"] = options.untangle;
   if (options.untangle) report["position"] = position_json(r.position);
   const auto& s = r.woven.stats;
@@ -245,12 +275,17 @@ int run_mesh(const MeshArgs& a) {
                      {"rolled_back_shrinks", s.rolled_back_shrinks},
                      {"parallel_merges", s.parallel_merges},
                      {"nonconvexity_seams", s.nonconvexity_seams}};
-  report["seconds"] = {
-      {"diagnose", r.seconds.diagnose}, {"orient", r.seconds.orient},
-      {"weave", r.seconds.weave},       {"validate", r.seconds.validate},
-      {"recover", r.seconds.recover},   {"position", r.seconds.position},
-      {"quality", r.seconds.quality},   {"stc", stc_seconds},
-      {"write", write_seconds},         {"total", r.seconds.total() + stc_seconds + write_seconds}};
+  report["seconds"] = {{"diagnose", r.seconds.diagnose},
+                       {"orient", r.seconds.orient},
+                       {"weave", r.seconds.weave},
+                       {"validate", r.seconds.validate},
+                       {"recover", r.seconds.recover},
+                       {"pillow", r.seconds.pillow},
+                       {"position", r.seconds.position},
+                       {"quality", r.seconds.quality},
+                       {"stc", stc_seconds},
+                       {"write", write_seconds},
+                       {"total", r.seconds.total() + stc_seconds + write_seconds}};
 
   if (!a.report.empty()) write_text_atomically(a.report, report.dump(1) + "\n");
   if (!a.trace.empty()) write_text_atomically(a.trace, *trace_text);
@@ -261,6 +296,7 @@ int run_mesh(const MeshArgs& a) {
     std::cout << "\nhexes      " << r.mesh.complex.hexes.size() << " (" << report["interior_nodes"]
               << " interior nodes, " << stc.sheets.size() << " sheets, " << stc.chords.size()
               << " chords, " << blind_chords << " blind)\n";
+    std::cout << "pillow     " << r.pillow.reason << "\n";
     std::cout << "valid      " << (r.validation.valid ? "yes" : "NO: " + r.validation.summary())
               << "\n";
     std::cout << "quality    min scaled Jacobian " << r.quality.min_scaled_jacobian << ", mean "
@@ -271,12 +307,32 @@ int run_mesh(const MeshArgs& a) {
     } else {
       std::cout << " (harmonic placement, not untangled)\n";
     }
+    if (options.untangle) {
+      std::cout << "shape      min scaled Jacobian " << r.position.min_scaled_jacobian_before
+                << " at the start, " << r.position.min_scaled_jacobian_untangled << " untangled, "
+                << r.position.min_scaled_jacobian_after << " after the shape phase (mean "
+                << r.position.mean_scaled_jacobian_before << ", "
+                << r.position.mean_scaled_jacobian_untangled << ", "
+                << r.position.mean_scaled_jacobian_after << "; " << r.position.shape.stop << ")\n";
+    }
     std::cout << "time       " << r.seconds.total() + stc_seconds + write_seconds << " s (weave "
               << r.seconds.weave << " s)\n";
     std::cout << "output     " << (write_mesh ? a.output : "not written (--fail-on-inverted)")
               << "\n";
   }
   if (!r.validation.valid) return kInternal;
+  if (!a.fail_on_inverted && r.quality.inverted > 0) {
+    // Not an error without --fail-on-inverted, but never silent: a solver rejects the mesh.
+    std::cerr << "stcweave: warning: " << r.quality.inverted << " of "
+              << r.mesh.complex.hexes.size()
+              << " hexes are still inverted after untangling (scaled Jacobian <= 0; "
+              << (options.untangle ? r.position.stop : std::string("--no-untangle"))
+              << "); the mesh was written; add --fail-on-inverted to make this an error"
+              << (r.pillow.applied || r.pillow.mode == primal::PillowMode::Always
+                      ? std::string()
+                      : std::string(", or try --pillow always"))
+              << "\n";
+  }
   if (inverted_left) {
     std::string ids;
     const std::vector<HexId>& bad = r.position.inverted;
@@ -335,6 +391,12 @@ Action add_mesh_command(CLI::App& app) {
                   "untangling starts from: harmonic, or layers (the weave's layer placement, or "
                   "the harmonic one when that has fewer inverted corners)")
       ->capture_default_str();
+  sub->add_option("--pillow", args->pillow,
+                  "pillow the boundary (a layer of hexes between each boundary quad and an "
+                  "interior copy of it): auto (only shells with a hex corner fixed by the "
+                  "boundary and flat or inverted), always, never")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "always", "never"}));
   sub->add_option("--position-rounds", args->position_rounds,
                   "untangling: most rounds of (minimise, lower epsilon)")
       ->capture_default_str()
@@ -356,6 +418,20 @@ Action add_mesh_command(CLI::App& app) {
                   "untangling: weight of the volume term against the shape term, in [0, 1]")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
+  sub->add_option("--shape-sweeps", args->shape_sweeps,
+                  "shape phase after untangling: most sweeps of local max-min moves that raise "
+                  "the worst scaled Jacobian (0: off)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100000));
+  sub->add_option("--shape-target", args->shape_target,
+                  "shape phase: hexes below this scaled Jacobian are worked on")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  sub->add_option("--good-start", args->good_start,
+                  "positioning keeps a start with no inverted corner whose min scaled Jacobian "
+                  "is at least this (no untangling rounds; above 1: never)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 2.0));
   sub->add_option("--certify-depth", args->certify_depth,
                   "subdivision depth of the Bezier validity certification of every hex")
       ->capture_default_str()

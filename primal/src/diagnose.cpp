@@ -333,6 +333,13 @@ void require_weavable(const SurfaceDiagnosis& d) {
                         ": stcweave needs a pure quad surface (or hex mesh); convert the other "
                         "cells to quads (e.g. split each triangle into three quads) and retry");
   }
+  if (d.quads == 0) {
+    throw TopologyError(
+        at +
+        "no quads and no hexahedra found: nothing to mesh; is this the right file and format? "
+        "(OBJ quads are `f` lines with four nodes; name the format explicitly "
+        "when the extension is wrong)");
+  }
   if (d.nonfinite_nodes > 0) {
     throw TopologyError(at + std::to_string(d.nonfinite_nodes) +
                         " surface node(s) have non-finite coordinates (NaN or infinite): " +

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "stcweave/primal/edge_angles.hpp"
+#include "stcweave/primal/pillow.hpp"
 #include "stcweave/stc/errors.hpp"
 
 namespace stcweave::primal {
@@ -73,12 +74,24 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
   r.mesh = recover_hex_mesh(r.surface.points, r.woven, &r.harmonic);
   r.seconds.recover = clock.lap();
 
+  // The layer placement reads the weave's own hexes, so it runs before pillowing.
+  const bool layer_start =
+      options.untangle && options.layer_start && layer_positions(r.mesh, r.woven) > 0;
+
+  stage("pillow");
+  r.pillow = pillow(r.mesh, r.surface.surface, options.pillow);
+  if (r.pillow.applied) {
+    // A pillowed complex that is not a hex complex with the input as boundary is a bug.
+    r.validation = stc::validate_hex_complex(r.mesh.complex, &r.surface.surface);
+    if (!r.validation.valid && !options.keep_invalid) stc::require_valid(r.validation);
+  }
+  r.seconds.pillow = clock.lap();
+
   if (options.untangle) {
     stage("position");
     PositionOptions position = options.position;
     position.num_fixed = r.woven.num_input_nodes;
-    if (options.layer_start && layer_positions(r.mesh, r.woven) > 0)
-      position.start = StartPosition::Auto;
+    if (layer_start) position.start = StartPosition::Auto;
     r.position = position_nodes(r.mesh, position);
     r.seconds.position = clock.lap();
   }

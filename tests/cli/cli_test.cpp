@@ -117,6 +117,50 @@ TEST_F(Cli, UnknownOutputExtensionExitsTwoBeforeWeaving) {
   EXPECT_EQ(r.code, 2) << r.out;
 }
 
+TEST_F(Cli, AFileWithoutQuadsExitsTwo) {
+  // Binary garbage named .obj and an OBJ with only `v` lines hold no quad: nothing to mesh.
+  const fs::path garbage = dir_ / "garbage.obj", points = dir_ / "points.obj";
+  {
+    std::ofstream g(garbage, std::ios::binary);
+    for (int i = 0; i < 4096; ++i) g.put(static_cast<char>((i * 7919 + 13) % 256));
+  }
+  std::ofstream(points) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 1\n";
+  for (const fs::path& in : {garbage, points}) {
+    SCOPED_TRACE(in.filename().string());
+    const fs::path out = dir_ / "out.vtk";
+    const CliRun r = run("mesh " + in.string() + " -o " + out.string());
+    EXPECT_EQ(r.code, 2) << r.out;
+    EXPECT_THAT(r.out, ::testing::HasSubstr("no quads"));
+    EXPECT_FALSE(fs::exists(out));
+  }
+}
+
+TEST_F(Cli, PillowModesAreAppliedAndReported) {
+  const fs::path surface = dir_ / "box.obj", out = dir_ / "out.vtk", report = dir_ / "r.json";
+  ASSERT_EQ(run("generate box 2 2 2 -q -o " + surface.string()).code, 0);
+  const std::string mesh =
+      "mesh " + surface.string() + " -o " + out.string() + " -q --report " + report.string();
+  ASSERT_EQ(run(mesh).code, 0);
+  nlohmann::json j = nlohmann::json::parse(slurp(report));
+  EXPECT_EQ(j.at("pillow").at("mode"), "auto");
+  EXPECT_FALSE(j.at("pillow").at("applied").get<bool>()) << j.at("pillow");
+  EXPECT_EQ(j.at("hexes"), 8);
+  EXPECT_DOUBLE_EQ(j.at("quality").at("min_scaled_jacobian").get<double>(), 1.0);
+
+  ASSERT_EQ(run(mesh + " --pillow always").code, 0);
+  j = nlohmann::json::parse(slurp(report));
+  EXPECT_TRUE(j.at("pillow").at("applied").get<bool>());
+  EXPECT_EQ(j.at("pillow").at("hexes_added"), 24);
+  EXPECT_EQ(j.at("hexes"), 32);
+  EXPECT_TRUE(j.at("valid").get<bool>());
+  EXPECT_EQ(j.at("quality").at("inverted"), 0);
+  EXPECT_THAT(j.at("pillow").at("reason").get<std::string>(), ::testing::HasSubstr("always"));
+  // The sheets the report counts are those of the final mesh: one more (the pillow).
+  EXPECT_EQ(j.at("sheets"), 7);
+
+  EXPECT_EQ(run(mesh + " --pillow sometimes").code, 1);
+}
+
 TEST_F(Cli, UnknownRuleSetExitsTwo) {
   const CliRun r =
       run("mesh " + data("bar_1x1x3.obj") + " -o " + (dir_ / "x.vtk").string() + " --rules magic");
@@ -171,7 +215,10 @@ TEST_F(Cli, NewtonStepsAreOptInAndReported) {
       "mesh " + surface.string() + " -o " + out.string() + " -q --report " + report.string();
   ASSERT_EQ(run(mesh).code, 0);
   EXPECT_EQ(nlohmann::json::parse(slurp(report)).at("position").at("newton_steps").get<int>(), 0);
-  const CliRun r = run(mesh + " --position-newton-after 1 --position-newton-steps 2");
+  // --good-start 2: the graded box's harmonic start is valid and good, which would skip the
+  // rounds (and their Newton steps) altogether.
+  const CliRun r =
+      run(mesh + " --position-newton-after 1 --position-newton-steps 2 --good-start 2");
   ASSERT_EQ(r.code, 0) << r.out;
   const auto j = nlohmann::json::parse(slurp(report));
   EXPECT_GT(j.at("position").at("newton_steps").get<int>(), 0);
@@ -194,7 +241,11 @@ TEST_F(Cli, FailOnInvertedExitsFourAndWritesNoMesh) {
   }
   const std::string mesh = "mesh " + surface.string() + " -o " + out.string() +
                            " --rules reliable -q --report " + report.string();
-  ASSERT_EQ(run(mesh).code, 0);  // without the flag: written, exit 0, quality says inverted
+  const CliRun plain = run(mesh);
+  ASSERT_EQ(plain.code, 0) << plain.out;  // without the flag: written, exit 0, ...
+  // ... but never silently: stderr says how many hexes are inverted.
+  EXPECT_THAT(plain.out, ::testing::HasSubstr("warning:"));
+  EXPECT_THAT(plain.out, ::testing::HasSubstr("still inverted after untangling"));
   EXPECT_TRUE(fs::exists(out));
   EXPECT_GT(nlohmann::json::parse(slurp(report)).at("quality").at("inverted").get<int>(), 0);
   fs::remove(out);

@@ -4,6 +4,7 @@
 /// of their independent oracle, `expected.json`, for the tests labelled `corpus`. Only for
 /// targets that define STCWEAVE_SHARED_DATA.
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -17,6 +18,20 @@ namespace stcweave::test {
 inline const std::filesystem::path& shared_data() {
   static const std::filesystem::path path = STCWEAVE_SHARED_DATA;
   return path;
+}
+
+/// True when the environment variable STCWEAVE_REQUIRE_SHARED_DATA is set to 1 (CI sets it
+/// in .ci/run): a corpus test must then fail, not skip, when the shared data is missing. A
+/// user's clone without the data leaves it unset and the corpus tests skip.
+inline bool shared_data_required() {
+  const char* v = std::getenv("STCWEAVE_REQUIRE_SHARED_DATA");
+  return v != nullptr && std::string(v) == "1";
+}
+
+/// True when the shared data folder exists (a test that then finds no expected.json or an
+/// empty file list must fail, not skip).
+inline bool has_shared_data() {
+  return std::filesystem::is_directory(shared_data());
 }
 
 /// expected.json, parsed once; not an object (null or discarded) when the file is missing
@@ -43,3 +58,15 @@ inline std::vector<std::string> expected_files(
 }
 
 }  // namespace stcweave::test
+
+/// In a test body: skips the test when the shared data is missing, or fails it when
+/// `shared_data_required()` (CI).
+#define STCWEAVE_SKIP_WITHOUT_SHARED_DATA()                                       \
+  do {                                                                            \
+    if (!::stcweave::test::has_shared_data()) {                                   \
+      if (::stcweave::test::shared_data_required())                               \
+        FAIL() << "shared data not found at " << STCWEAVE_SHARED_DATA             \
+               << " and STCWEAVE_REQUIRE_SHARED_DATA=1: CI needs ../shared/data"; \
+      GTEST_SKIP() << "shared data not found at " << STCWEAVE_SHARED_DATA;        \
+    }                                                                             \
+  } while (false)

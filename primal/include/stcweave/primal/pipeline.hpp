@@ -1,15 +1,16 @@
 #pragma once
 /// \file
 /// The whole pipeline as one call: diagnose -> require weavable -> orient outward -> weave
-/// -> validate the complex -> primal recovery -> node positioning (untangling) -> quality. Each
-/// stage is also a public function of its own; this only strings them together, times them and
-/// keeps every intermediate value for inspection.
+/// -> validate the complex -> primal recovery -> pillowing (pillow.hpp) -> node positioning
+/// (untangling) -> quality. Each stage is also a public function of its own; this only strings them
+/// together, times them and keeps every intermediate value for inspection.
 
 #include <functional>
 #include <string>
 
 #include "stcweave/primal/diagnose.hpp"
 #include "stcweave/primal/mesh.hpp"
+#include "stcweave/primal/pillow.hpp"
 #include "stcweave/primal/position.hpp"
 #include "stcweave/primal/quality.hpp"
 #include "stcweave/primal/recover.hpp"
@@ -36,11 +37,14 @@ struct MeshOptions {
   /// inverted corners. Off by default: measured on the woven shared corpus it gives the same
   /// result as the harmonic start or a worse one (docs/geometry.md).
   bool layer_start = false;
+  /// Pillowing between recovery and positioning (stage "pillow"): `auto` by default, which
+  /// pillows only the shells with a flat or non-convex fixed corner (docs/pillowing.md).
+  PillowOptions pillow;
   /// Settings of the positioning stage; `num_fixed` is set by the pipeline (the input
   /// surface's nodes are fixed).
   PositionOptions position;
   /// Called when a stage starts ("diagnose", "orient", "weave", "validate", "recover",
-  /// "position", "quality").
+  /// "pillow", "position", "quality").
   std::function<void(const std::string& stage)> on_stage;
 };
 
@@ -51,10 +55,11 @@ struct StageSeconds {
   double weave = 0.0;
   double validate = 0.0;
   double recover = 0.0;
+  double pillow = 0.0;
   double position = 0.0;
   double quality = 0.0;
   [[nodiscard]] double total() const {
-    return diagnose + orient + weave + validate + recover + position + quality;
+    return diagnose + orient + weave + validate + recover + pillow + position + quality;
   }
 };
 
@@ -65,8 +70,12 @@ struct MeshResult {
   SurfaceDiagnosis diagnosis;
   OrientationReport orientation;
   weave::WeaveResult woven;
+  /// Validation of the final complex (`mesh.complex`, after pillowing) against the input.
   stc::ValidationReport validation;
   HarmonicReport harmonic;
+  /// What the pillow stage decided and did. When it pillowed, `mesh` has the pillow's nodes
+  /// and hexes appended while `woven` stays the weave's own result.
+  PillowReport pillow;
   PositionReport position;  ///< empty when `MeshOptions::untangle` is false
   QualitySummary quality;
   StageSeconds seconds;

@@ -89,7 +89,56 @@ struct PositionOptions {
   /// Threads evaluating the energy of meshes of 4096 hexes or more (0: one per hardware
   /// thread). The result does not depend on it.
   int threads = 0;
+  /// Early stop: a start with no inverted corner or hex, a minimum scaled Jacobian of at
+  /// least this and a mean of at least `good_start_mean` is kept as it is (no untangling
+  /// rounds; the shape phase still runs). 0.5 is the lower end of Verdict's acceptable range;
+  /// measured on the transfinite cylinders, the untangling energy only lowers such a start's
+  /// min scaled Jacobian (docs/geometry.md).
+  /// Above 1: never stop early. The start must also have a mean of `good_start_mean`.
+  double good_start = 0.5;
+  /// Early stop: the mean scaled Jacobian a good start needs as well (0.95: within a few
+  /// percent of the ideal on average, where the energy has little left to even out).
+  double good_start_mean = 0.95;
+  /// Shape phase after untangling (see `improve_shape`): off with 0 sweeps.
+  int max_shape_sweeps = 30;
+  /// Shape phase: hexes below this scaled Jacobian are worked on.
+  double shape_target = 0.6;
+  /// Shape phase: stop when a sweep raised the minimum scaled Jacobian by less than this and
+  /// reduced the shortfall, sum over hexes of max(0, shape_target - scaled Jacobian), by
+  /// less than this fraction of it.
+  double shape_tolerance = 1e-2;
 };
+
+/// What `improve_shape` did.
+struct ShapeReport {
+  bool ran = false;  ///< false when the mesh had inverted hexes or no free node
+  std::size_t sweeps = 0;
+  std::size_t moves = 0;  ///< accepted node moves
+  double min_scaled_jacobian_before = 0.0;
+  double min_scaled_jacobian_after = 0.0;
+  double mean_scaled_jacobian_before = 0.0;
+  double mean_scaled_jacobian_after = 0.0;
+  /// "target reached" (no hex below `shape_target`), "settled" (a sweep gained less than
+  /// `shape_tolerance` in the minimum and in the shortfall below the target), "sweep limit",
+  /// "inverted hexes: skipped", "no free node", "off".
+  std::string stop;
+};
+
+/// Shape improvement of an untangled mesh: raises the worst scaled Jacobian (Verdict's, the
+/// 9-point one the quality report uses) by local max-min moves, nodes `fixed` never move.
+/// Each sweep visits, in node order, every free node of a hex whose scaled Jacobian is below
+/// `shape_target`, and moves it only when that raises the smallest scaled Jacobian of the
+/// hexes around it: first to the mean of its edge neighbours (smart Laplacian), then along
+/// the finite-difference gradient of that local minimum with halving steps from a fifth of
+/// its mean edge length. A move is accepted only if the local minimum grows, so no hex gets
+/// worse than the worst one around it was and none can invert: the mesh's minimum never
+/// drops (a barrier on the worst element). Stops when no hex is below the target, when a
+/// sweep raised the minimum by less than `shape_tolerance` and reduced the shortfall
+/// sum max(0, target - SJ) by less than `shape_tolerance` of it, or after `max_shape_sweeps`.
+/// Deterministic (fixed order, no threads). Runs nothing when a hex is inverted.
+/// \pre `fixed.size() == mesh.points.rows()`.
+ShapeReport improve_shape(HexMesh& mesh, const std::vector<bool>& fixed,
+                          const PositionOptions& options);
 
 /// A hex corner that no position of the free nodes can make positive.
 struct ImpossibleCorner {
@@ -132,12 +181,20 @@ struct PositionReport {
   /// Jacobian (9 points) > 0. False whenever `impossible` is not empty.
   bool untangled = false;
   /// Why it stopped: "converged", "stalled: N corners still inverted", "iteration limit",
-  /// "no free node"; followed by "; N impossible corners left out" (listed in `impossible`) when
-  /// some corners could not be fixed by any position.
+  /// "no free node", "good start: ..." (kept, see `PositionOptions::good_start`); followed by
+  /// "; N impossible corners left out" (listed in `impossible`) when some corners could not
+  /// be fixed by any position, and "; kept the ..." when the start was kept (`kept_start`).
   std::string stop;
   double seconds = 0.0;
-  /// The optimised positions had more inverted hexes than the start: the start was kept.
+  /// The optimised positions had more inverted hexes than the start, or a valid start had a
+  /// better worst hex (min scaled Jacobian) than them: the start was kept.
   bool kept_start = false;
+  /// The start was valid and good (`PositionOptions::good_start`): no untangling rounds ran.
+  bool good_start = false;
+  /// Quality after untangling, before the shape phase.
+  double min_scaled_jacobian_untangled = 0.0;
+  double mean_scaled_jacobian_untangled = 0.0;
+  ShapeReport shape;  ///< the shape phase after untangling
 };
 
 /// The energy of one corner (see the file comment) for the edge matrix `edges` (columns

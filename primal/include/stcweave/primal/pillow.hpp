@@ -1,0 +1,94 @@
+#pragma once
+/// \file
+/// Pillowing: a closed sheet of hexes parallel to a boundary shell, inserted between the
+/// recovered weave and the positioning (docs/pillowing.md).
+///
+/// What it guarantees. For every shell (connected component of the boundary surface) that is
+/// pillowed, each of its boundary nodes n gets one interior copy n'; every hex of the complex
+/// that used n uses n' instead, and each boundary quad (a, b, c, d) of the shell gets one new
+/// hex between the quad and its copy (a', b', c', d'). Boundary nodes keep their ids and
+/// coordinates and the boundary quads stay exactly the faces used once, so the result is a
+/// hex complex with the same boundary whenever the input was one (`stc::validate_hex_complex`
+/// with the input surface as expected boundary passes). Afterwards every hex has at most one
+/// face, and no corner with all four nodes, on that shell: each corner's Jacobian depends on
+/// at least one free node, which the untangler can move.
+///
+/// Copies start inside, offset from their boundary node against the (area-weighted) vertex
+/// normal by `PillowOptions::offset` times the mean length of the node's boundary edges. The
+/// positioning stage then untangles and improves them like every other interior node.
+///
+/// Time and memory: linear in the number of hexes and quads. Deterministic: new nodes and
+/// hexes are numbered in the order of the boundary nodes and quads.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "stcweave/primal/mesh.hpp"
+
+namespace stcweave::primal {
+
+/// When the pipeline pillows.
+enum class PillowMode {
+  /// Pillow the shells that need it: those with a hex corner whose four nodes all lie on the
+  /// shell (so no placement of the interior nodes can change its Jacobian) with a scaled
+  /// Jacobian below `PillowOptions::min_fixed_corner` (docs/pillowing.md says why).
+  Auto,
+  Always,  ///< pillow every shell
+  Never,   ///< never pillow
+};
+
+/// Name of a mode as used on the command line ("auto", "always", "never").
+[[nodiscard]] std::string to_string(PillowMode mode);
+/// \throw InvalidInput for an unknown name; the message lists the valid ones.
+[[nodiscard]] PillowMode pillow_mode_from_name(const std::string& name);
+
+/// Options of `pillow` (plain values; defaults measured in docs/pillowing.md).
+struct PillowOptions {
+  PillowMode mode = PillowMode::Auto;
+  /// Auto: a shell is pillowed when one of its fixed corners (a hex corner whose four nodes
+  /// are boundary nodes of that shell) has a scaled Jacobian below this. A corner on an edge
+  /// where two boundary faces of one hex meet at dihedral angle a has a scaled Jacobian of at
+  /// most sin a, so 0.2 catches every such edge flatter than about 168 degrees (and every
+  /// non-convex one), and leaves the 90-degree edges of boxes alone.
+  double min_fixed_corner = 0.2;
+  /// Initial inward offset of a copy, as a fraction of the mean length of its node's
+  /// boundary edges (0 < offset < 1; a quarter was measured to work).
+  double offset = 0.25;
+};
+
+/// What `pillow` decided and did.
+struct PillowReport {
+  PillowMode mode = PillowMode::Auto;
+  bool applied = false;               ///< at least one shell was pillowed
+  std::size_t shells = 0;             ///< connected components of the boundary surface
+  std::size_t shells_pillowed = 0;    ///< of those, pillowed
+  std::size_t fixed_corners = 0;      ///< hex corners whose four nodes are boundary nodes
+  std::size_t bad_fixed_corners = 0;  ///< of those, below `min_fixed_corner`
+  /// Smallest scaled Jacobian of a fixed corner (1 when there is none), and where.
+  double worst_fixed_corner = 1.0;
+  HexId worst_hex;
+  int worst_corner = -1;
+  std::size_t nodes_added = 0;  ///< interior copies of boundary nodes
+  std::size_t hexes_added = 0;  ///< one per boundary quad of a pillowed shell
+  /// One line: which mode, whether pillowed, and why (names the worst fixed corner).
+  std::string reason;
+};
+
+/// The fixed corners of `mesh` (hex corners whose four nodes are among the boundary nodes
+/// `0 .. num_boundary_nodes-1`) and their scaled Jacobians, as `pillow`'s Auto mode sees them;
+/// `bad_fixed_corners` counts those below `options.min_fixed_corner`. Nothing is changed.
+/// \throw InvalidInput when a hex names a node outside the point matrix.
+[[nodiscard]] PillowReport assess_pillow(const HexMesh& mesh, std::size_t num_boundary_nodes,
+                                         const PillowOptions& options = {});
+
+/// Pillows the shells of `boundary` that `options.mode` selects (see the file comment).
+/// New nodes are appended after the existing ones, new hexes after the existing hexes.
+/// \pre `boundary` is the complex's boundary: its quads are the faces used once, oriented
+///      outward, over the nodes `0 .. boundary.num_nodes-1` of `mesh`.
+/// \throw InvalidInput when the point matrix and the complex disagree, a quad names a node
+///        outside the boundary's node range, or `options.offset` is not in ]0, 1[.
+PillowReport pillow(HexMesh& mesh, const stc::QuadSurface& boundary,
+                    const PillowOptions& options = {});
+
+}  // namespace stcweave::primal
