@@ -272,7 +272,7 @@
     else {
       var h = ORDER[state.step - 1];
       info += 'Step ' + state.step + ' of ' + m + ': hex h' + h;
-      if (RULE) info += ', made by ' + ruleName(h) + (RNODE && RNODE[h] >= 0 ? ' at node n' + RNODE[h] : '');
+      if (RULE) info += ', made by ' + ruleName(h) + (RNODE && RNODE[h] >= 0 ? ' at front node n' + RNODE[h] + ' (the weave\'s numbering)' : '');
       if (SHRINK) {
         var r = shrinkInfo[SHRINK[h]];
         info += '; loop shrink ' + SHRINK[h] + ' (' + shrinkSize[SHRINK[h]] + ' hexes)';
