@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # stcweave developer entry point.
 #   ./dev.sh run   install what is missing, build (Release, in build/), mesh data/lblock.obj
-#   ./dev.sh test  install what is missing, build, run the whole test suite (ctest)
+#   ./dev.sh test  install what is missing (and chromium), build, run the whole test suite (ctest)
 #   ./dev.sh build install what is missing, build
 #   ./dev.sh lint  also install clang-format and clang-tidy; check the formatting of every
 #                  C++ file and run clang-tidy (.clang-tidy) on the libraries and the CLI
@@ -10,7 +10,7 @@ set -euo pipefail
 cd "$(dirname "$0")"
 
 PACKAGES=(cmake g++ make pkg-config libboost-graph-dev libeigen3-dev nlohmann-json3-dev
-  libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev liblbfgspp-dev)
+  libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev liblbfgspp-dev libjs-three)
 BUILD_DIR=${STCWEAVE_BUILD_DIR:-build}
 JOBS=${STCWEAVE_JOBS:-$(nproc 2>/dev/null || echo 2)}
 
@@ -53,7 +53,7 @@ case "$cmd" in
     "$BUILD_DIR/bin/stcweave" mesh data/lblock.obj -o "$BUILD_DIR/out/lblock.vtk" \
       --report "$BUILD_DIR/out/lblock.report.json" ;;
   test)
-    build
+    build chromium  # headless Chromium for the browser page's tests (ctest label browser)
     cd "$BUILD_DIR"
     ctest --output-on-failure -j "$JOBS" ;;
   lint)
