@@ -83,9 +83,11 @@ long number(const std::map<std::string, std::string>& s, const std::string& key)
   return it == s.end() ? -1 : std::stol(it->second);
 }
 
-/// Checks a page of `hexes` hexes and `sheets` sheets / `chords` chords in the browser.
+/// Checks a page of `hexes` hexes and `sheets` sheets / `chords` chords in the browser, and
+/// takes a screenshot of it opened with `shot_hash` (page options, e.g. "#step=10").
 void check_page(const fs::path& page, std::size_t hexes, std::size_t sheets, std::size_t chords,
-                const fs::path& dir, const std::string& screenshot_name) {
+                const fs::path& dir, const std::string& screenshot_name,
+                const std::string& shot_hash = "") {
   std::string log;
   const auto s = page_status(page, "#test", dir, &log);
   ASSERT_FALSE(s.empty()) << "no status element in the page's DOM; chromium said:\n" << log;
@@ -118,7 +120,8 @@ void check_page(const fs::path& page, std::size_t hexes, std::size_t sheets, std
   const fs::path png = (keep != nullptr ? fs::path(keep) : dir) / (screenshot_name + ".png");
   const std::string cmd = "timeout 180 '" + chromium() + "'" + browser_flags(dir) +
                           " --virtual-time-budget=5000 --screenshot='" + png.string() +
-                          "' 'file://" + fs::absolute(page).string() + "' > /dev/null 2>&1";
+                          "' 'file://" + fs::absolute(page).string() + shot_hash +
+                          "' > /dev/null 2>&1";
   ASSERT_EQ(shell(cmd), 0);
   const std::string bytes = test::slurp(png);
   ASSERT_GT(bytes.size(), 24U);
@@ -147,7 +150,7 @@ TEST(Browser, MeshHtmlOfTheLBlock) {
                     " --report " + (dir / "r.json").string() + " -q");
   ASSERT_EQ(r.code, 0) << r.out;
   const nlohmann::json rep = report(dir / "r.json");
-  check_page(dir / "lblock.html", rep["hexes"], rep["sheets"], rep["chords"], dir, "lblock");
+  check_page(dir / "lblock.html", rep["hexes"], rep["sheets"], rep["chords"], dir, "view-lblock");
 }
 
 TEST(Browser, ViewOfAWovenBoxAndOfAMeshWithoutCellData) {
@@ -164,13 +167,15 @@ TEST(Browser, ViewOfAWovenBoxAndOfAMeshWithoutCellData) {
                     " --trace " + (dir / "t.jsonl").string());
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("weave replay"), std::string::npos) << r.out;
-  check_page(dir / "view.html", rep["hexes"], rep["sheets"], rep["chords"], dir, "box");
+  check_page(dir / "view.html", rep["hexes"], rep["sheets"], rep["chords"], dir, "view-box");
+  check_page(dir / "view.html", rep["hexes"], rep["sheets"], rep["chords"], dir, "view-box-replay",
+             "#step=150&clip=y:0.5:flip");
   // A hex mesh with no data at all (generated): the page still works, replaying file order.
   ASSERT_EQ(test::run_cli("generate box 3 3 3 --hexes -o " + (dir / "h.vtk").string()).code, 0);
   r = test::run_cli("view " + (dir / "h.vtk").string() + " -o " + (dir / "h.html").string());
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("no weave data"), std::string::npos) << r.out;
-  check_page(dir / "h.html", 27, 9, 27, dir, "box3");
+  check_page(dir / "h.html", 27, 9, 27, dir, "view-hexes");
 }
 
 }  // namespace

@@ -400,7 +400,7 @@
   controls.addEventListener('change', render);
   window.addEventListener('resize', function () { resize(); render(); });
 
-  // ---- options from the address (#color=sj&clip=z:0.5&step=10&test) ----
+  // ---- options from the address (#color=sj&clip=z:0.5[:flip]&step=10&test) ----
   var options = {};
   location.hash.replace(/^#/, '').split('&').forEach(function (kv) {
     if (!kv) return;
@@ -411,6 +411,7 @@
   if (options.clip) {
     var cp = options.clip.split(':');
     state.clip = true; state.axis = { x: 0, y: 1, z: 2 }[cp[0]] || 0; state.at = Number(cp[1] || 0.5);
+    state.flip = cp[2] === 'flip'; el('clip-flip').checked = state.flip;
     el('clip').checked = true; el('clip-axis').value = state.axis; el('clip-at').value = Math.round(state.at * 1000);
   }
 
