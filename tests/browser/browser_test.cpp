@@ -112,6 +112,8 @@ void check_page(const fs::path& page, std::size_t hexes, std::size_t sheets, std
   EXPECT_GT(number(s, "chord-shown"), 0);
   EXPECT_LT(number(s, "clip-shown"), static_cast<long>(hexes));
   EXPECT_GT(number(s, "drawn-faces"), 0);
+  EXPECT_GE(number(s, "picked"), 0) << "a click at the centre hit no hex";
+  EXPECT_LT(number(s, "picked"), static_cast<long>(hexes));
   // Not blank: a good part of the canvas is painted, with sheets coloured apart.
   EXPECT_GT(std::stod(s.at("painted")), 0.05) << "painted fraction " << s.at("painted");
   EXPECT_GE(number(s, "colours"), static_cast<long>(std::min<std::size_t>(sheets, 8)));

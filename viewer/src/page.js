@@ -450,7 +450,12 @@
     state.clip = true; rebuild(); setStatus('clip-shown', visibleCount); state.clip = 'clip' in options;
     ['sj', 'depth', 'layer', 'step', 'shrink', 'layers'].forEach(function (mode) { state.color = mode; rebuild(); });
     state.color = options.color || 'sheets';
-    if (m) pick(0);
+    // A click at the centre of the view: the ray must hit a drawn face of a hex.
+    rebuild();
+    raycaster.setFromCamera(new THREE.Vector2(0, 0), camera);
+    var hits = mesh ? raycaster.intersectObject(mesh) : [];
+    setStatus('picked', hits.length > 0 ? triHex[hits[0].faceIndex] : -1);
+    if (hits.length > 0) pick(triHex[hits[0].faceIndex]);
   }
   if (options.step !== undefined) state.step = Math.max(0, Math.min(m, Number(options.step)));
   slider.value = state.step;
