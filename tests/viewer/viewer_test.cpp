@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -38,13 +39,16 @@ std::vector<std::uint8_t> unbase64(const std::string& s) {
   return out;
 }
 
+/// Integers as the page stores them: {offset, bytes (1, 2, 4), data: base64 little-endian}.
 std::vector<std::int32_t> int32s(const nlohmann::json& j) {
-  const std::vector<std::uint8_t> b = unbase64(j.get<std::string>());
-  std::vector<std::int32_t> out(b.size() / 4);
+  const std::vector<std::uint8_t> b = unbase64(j.at("data").get<std::string>());
+  const std::size_t width = j.at("bytes").get<std::size_t>();
+  const std::int64_t offset = j.at("offset").get<std::int64_t>();
+  std::vector<std::int32_t> out(b.size() / width);
   for (std::size_t i = 0; i < out.size(); ++i) {
-    const std::uint32_t u = b[4 * i] | (b[4 * i + 1] << 8) | (b[4 * i + 2] << 16) |
-                            (static_cast<std::uint32_t>(b[4 * i + 3]) << 24);
-    std::memcpy(&out[i], &u, 4);
+    std::uint64_t u = 0;
+    for (std::size_t k = 0; k < width; ++k) u |= std::uint64_t{b[width * i + k]} << (8 * k);
+    out[i] = static_cast<std::int32_t>(static_cast<std::int64_t>(u) + offset);
   }
   return out;
 }
@@ -120,7 +124,11 @@ TEST(Page, DataMatchesTheWovenMesh) {
   EXPECT_TRUE(d["history"].get<bool>());
   EXPECT_EQ(int32s(d["shrink"]), r.woven.hex_shrink);
   EXPECT_EQ(d["shrinks"].size(), history.shrinks.size());
-  EXPECT_EQ(int32s(d["neighbours"]).size(), 6 * m);
+  const auto neighbours = int32s(d["neighbours"]);
+  ASSERT_EQ(neighbours.size(), 6 * m);
+  EXPECT_EQ(*std::min_element(neighbours.begin(), neighbours.end()), -1);  // the boundary
+  EXPECT_EQ(d["neighbours"]["bytes"], 1);  // 61 values (-1..59): one byte each
+  EXPECT_EQ(d["order"]["offset"], 0);
   // Determinism: the same page twice.
   EXPECT_EQ(page_html(r.mesh, stc, data, page), html);
 }

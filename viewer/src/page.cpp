@@ -24,24 +24,36 @@ namespace stcweave::viewer {
 
 namespace {
 
-/// Little-endian bytes of a typed array.
+/// Little-endian bytes of a float32 array.
 class Bytes {
  public:
-  void i32(std::int32_t v) {
-    const auto u = static_cast<std::uint32_t>(v);
-    for (int k = 0; k < 4; ++k) bytes_.push_back(static_cast<std::uint8_t>((u >> (8 * k)) & 0xffU));
-  }
   void f32(float v) {
     std::uint32_t u = 0;
     std::memcpy(&u, &v, sizeof u);
     for (int k = 0; k < 4; ++k) bytes_.push_back(static_cast<std::uint8_t>((u >> (8 * k)) & 0xffU));
   }
-  void i8(std::int8_t v) { bytes_.push_back(static_cast<std::uint8_t>(v)); }
   [[nodiscard]] std::string base64() const { return viewer::base64(bytes_); }
 
  private:
   std::vector<std::uint8_t> bytes_;
 };
+
+/// Integers as the page stores them: value - offset (offset = the least value) in the
+/// narrowest unsigned little-endian type that holds them (1, 2 or 4 bytes), base64.
+nlohmann::json ints_json(const std::vector<std::int32_t>& values) {
+  const auto [lo_it, hi_it] = std::minmax_element(values.begin(), values.end());
+  const std::int64_t lo = values.empty() ? 0 : *lo_it;
+  const std::int64_t span = values.empty() ? 0 : std::int64_t{*hi_it} - lo;
+  const int width = span < 256 ? 1 : span < 65536 ? 2 : 4;
+  std::vector<std::uint8_t> bytes;
+  bytes.reserve(values.size() * static_cast<std::size_t>(width));
+  for (const std::int32_t v : values) {
+    const auto u = static_cast<std::uint32_t>(std::int64_t{v} - lo);
+    for (int k = 0; k < width; ++k)
+      bytes.push_back(static_cast<std::uint8_t>((u >> (8 * k)) & 0xffU));
+  }
+  return {{"offset", lo}, {"bytes", width}, {"data", base64(bytes)}};
+}
 
 /// The cell array `name` of `data` when it has one value per hex, else nullptr.
 const primal::DataArray* cell_array(const primal::MeshData& data, std::string_view name,
@@ -117,17 +129,18 @@ nlohmann::json page_data(const primal::HexMesh& mesh, const stc::HexStc& stc,
     j["points"] = b.base64();
   }
   {
-    Bytes b;
+    std::vector<std::int32_t> v;
+    v.reserve(8 * m);
     for (const auto& h : mesh.complex.hexes)
-      for (const NodeId v : h) b.i32(v.value());
-    j["hex_nodes"] = b.base64();
+      for (const NodeId x : h) v.push_back(x.value());
+    j["hex_nodes"] = ints_json(v);
   }
   const auto neighbours = primal::hex_face_neighbours(mesh.complex);
   {
-    Bytes b;
-    for (const auto& f : neighbours)
-      for (const std::int32_t x : f) b.i32(x);
-    j["neighbours"] = b.base64();
+    std::vector<std::int32_t> v;
+    v.reserve(6 * m);
+    for (const auto& f : neighbours) v.insert(v.end(), f.begin(), f.end());
+    j["neighbours"] = ints_json(v);
   }
   {
     const primal::DataArray* sj = cell_array(data, "scaled_jacobian", m);
@@ -141,23 +154,23 @@ nlohmann::json page_data(const primal::HexMesh& mesh, const stc::HexStc& stc,
     j["scaled_jacobian"] = b.base64();
   }
   {
-    Bytes sheets;
-    Bytes chords;
+    std::vector<std::int32_t> sheets;
+    std::vector<std::int32_t> chords;
     for (const auto& v : stc.vertices) {
-      for (const SheetId s : v.sheets) sheets.i32(s.value());
-      for (const ChordId c : v.chords) chords.i32(c.value());
+      for (const SheetId s : v.sheets) sheets.push_back(s.value());
+      for (const ChordId c : v.chords) chords.push_back(c.value());
     }
-    j["sheet_ids"] = sheets.base64();
-    j["chord_ids"] = chords.base64();
+    j["sheet_ids"] = ints_json(sheets);
+    j["chord_ids"] = ints_json(chords);
   }
   {
     const primal::DataArray* layer = cell_array(data, "layer", m);
     const std::vector<std::int32_t> computed =
         layer != nullptr ? std::vector<std::int32_t>{} : primal::hex_layers(neighbours);
-    Bytes b;
+    std::vector<std::int32_t> v(m);
     for (std::size_t h = 0; h < m; ++h)
-      b.i32(layer != nullptr ? static_cast<std::int32_t>(layer->values[h]) : computed[h]);
-    j["layer"] = b.base64();
+      v[h] = layer != nullptr ? static_cast<std::int32_t>(layer->values[h]) : computed[h];
+    j["layer"] = ints_json(v);
   }
   // The replay order: by creation step when known, else the mesh's hex order.
   const primal::DataArray* step = cell_array(data, "creation_step", m);
@@ -169,24 +182,20 @@ nlohmann::json page_data(const primal::HexMesh& mesh, const stc::HexStc& stc,
     });
   }
   j["history"] = step != nullptr;
-  {
-    Bytes b;
-    for (const std::int32_t h : order) b.i32(h);
-    j["order"] = b.base64();
-  }
+  j["order"] = ints_json(order);
   const auto int_array = [&](std::string_view name, std::string_view key) {
     const primal::DataArray* a = cell_array(data, name, m);
     if (a == nullptr) return;
-    Bytes b;
-    for (std::size_t h = 0; h < m; ++h) b.i32(static_cast<std::int32_t>(a->values[h]));
-    j[std::string(key)] = b.base64();
+    std::vector<std::int32_t> v(m);
+    for (std::size_t h = 0; h < m; ++h) v[h] = static_cast<std::int32_t>(a->values[h]);
+    j[std::string(key)] = ints_json(v);
   };
   int_array("shrink", "shrink");
   int_array("depth", "depth");
   if (const primal::DataArray* rule = cell_array(data, "rule", m)) {
-    Bytes b;
-    for (std::size_t h = 0; h < m; ++h) b.i8(static_cast<std::int8_t>(rule->values[h]));
-    j["rule"] = b.base64();
+    std::vector<std::int32_t> v(m);
+    for (std::size_t h = 0; h < m; ++h) v[h] = static_cast<std::int32_t>(rule->values[h]);
+    j["rule"] = ints_json(v);
     nlohmann::json names = nlohmann::json::object();
     for (const int code : {primal::kRuleCross, primal::kRuleCrossRelaxed, primal::kRuleBlindChord,
                            primal::kRuleParallelMerge, primal::kRuleOther})
@@ -194,9 +203,10 @@ nlohmann::json page_data(const primal::HexMesh& mesh, const stc::HexStc& stc,
     j["rule_names"] = names;
   }
   if (options.hex_nodes.size() == m) {
-    Bytes b;
-    for (const NodeId v : options.hex_nodes) b.i32(v.is_valid() ? v.value() : -1);
-    j["rule_node"] = b.base64();
+    std::vector<std::int32_t> v;
+    v.reserve(m);
+    for (const NodeId x : options.hex_nodes) v.push_back(x.is_valid() ? x.value() : -1);
+    j["rule_node"] = ints_json(v);
   }
   nlohmann::json shrinks = nlohmann::json::array();
   for (const primal::ShrinkRecord& r : options.shrinks) {

@@ -17,20 +17,29 @@
     for (var i = 0; i < bin.length; i++) bytes[i] = bin.charCodeAt(i);
     return new Type(bytes.buffer);
   }
+  // Integers: value - offset in the narrowest unsigned type (see page.cpp), to Int32Array.
+  function ints(entry) {
+    if (entry === undefined || entry === null) return null;
+    var Type = { 1: Uint8Array, 2: Uint16Array, 4: Uint32Array }[entry.bytes];
+    if (!Type) throw new Error('embedded integers of ' + entry.bytes + ' bytes');
+    var raw = decode(entry.data, Type), out = new Int32Array(raw.length), offset = entry.offset;
+    for (var i = 0; i < raw.length; i++) out[i] = raw[i] + offset;
+    return out;
+  }
   var m = D.hexes, n = D.nodes;
   document.getElementById('title').textContent = D.title;
   var P = decode(D.points, Float32Array);
-  var H = decode(D.hex_nodes, Int32Array);
-  var NB = decode(D.neighbours, Int32Array);
+  var H = ints(D.hex_nodes);
+  var NB = ints(D.neighbours);
   var SJ = decode(D.scaled_jacobian, Float32Array);
-  var SH = decode(D.sheet_ids, Int32Array);
-  var CH = decode(D.chord_ids, Int32Array);
-  var LAYER = decode(D.layer, Int32Array);
-  var ORDER = decode(D.order, Int32Array);
-  var SHRINK = decode(D.shrink, Int32Array);
-  var DEPTH = decode(D.depth, Int32Array);
-  var RULE = decode(D.rule, Int8Array);
-  var RNODE = decode(D.rule_node, Int32Array);
+  var SH = ints(D.sheet_ids);
+  var CH = ints(D.chord_ids);
+  var LAYER = ints(D.layer);
+  var ORDER = ints(D.order);
+  var SHRINK = ints(D.shrink);
+  var DEPTH = ints(D.depth);
+  var RULE = ints(D.rule);
+  var RNODE = ints(D.rule_node);
   function expect(name, array, size) {
     if (array !== null && array.length !== size)
       throw new Error('embedded array ' + name + ' has ' + array.length + ' values, ' + size + ' expected');

@@ -12,10 +12,12 @@
 /// histogram. The design and the data layout are in docs/viewer.md.
 ///
 /// Data layout: a `<script type="application/json" id="stcweave-data">` element holds a JSON
-/// object whose large arrays are base64 strings of little-endian typed arrays (`points`:
-/// float32 x 3 per node; `hexes`: int32 x 8; `neighbours`: int32 x 6, -1 on the boundary;
-/// `scaled_jacobian`: float32; `sheets`, `chords`: int32 x 3; `layer`, `order` (hex ids in
-/// creation order), `shrink`, `depth`, `node`: int32; `rule`: int8 codes of `primal::rule_code`).
+/// object whose large arrays are base64 strings of little-endian typed arrays: `points`
+/// (float32 x 3 per node) and `scaled_jacobian` (float32); the integer arrays `hex_nodes` (8
+/// per hex), `neighbours` (6 per hex, -1 on the boundary), `sheet_ids`, `chord_ids` (3 per
+/// hex), `layer`, `order` (hex ids in creation order), `shrink`, `depth`, `rule` (codes of
+/// `primal::rule_code`), `rule_node` as `{offset, bytes, data}`: value - offset in the
+/// narrowest unsigned type (1, 2 or 4 bytes). docs/viewer.md has the rest.
 
 #include <cstdint>
 #include <filesystem>
