@@ -61,10 +61,11 @@ TraceFile read_trace(const std::string& path) {
     ++number;
     if (line.empty()) continue;
     const nlohmann::json j = nlohmann::json::parse(line, nullptr, false);
-    if (j.is_discarded() || !j.is_object() || !j.contains("event"))
+    if (j.is_discarded() || !j.is_object() || !j.contains("event")) {
       throw InvalidInput(path + ":" + std::to_string(number) +
                          ": not a trace line of `stcweave mesh --trace` (JSON object with "
                          "\"event\"); give the trace of the weave that made the mesh");
+    }
     weave::TraceEvent e;
     e.shrink = j.value("shrink", -1);
     const std::string event = j.value("event", "");
@@ -109,17 +110,19 @@ TraceFile read_trace(const std::string& path) {
 }
 
 int run_view(const ViewArgs& a) {
-  if (!viewer::has_three_js())
+  if (!viewer::has_three_js()) {
     throw Unsupported(
         "view: this stcweave was built without three.js, so it cannot make the page; install "
         "Debian's libjs-three (./dev.sh installs it) and rebuild");
+  }
   const primal::Format format =
       a.format == "auto" ? primal::Format::Auto : primal::format_from_name(a.format);
   const primal::MeshFile file = primal::read_mesh(a.input, format);
-  if (file.hexes.empty())
+  if (file.hexes.empty()) {
     throw InvalidInput("view: " + a.input + " has no hexahedra (" +
                        std::to_string(file.quads.size()) +
                        " quads); give a hex mesh, e.g. the output of `stcweave mesh`");
+  }
   primal::HexMesh mesh;
   mesh.points = file.points;
   mesh.complex.num_nodes = static_cast<std::size_t>(file.points.rows());

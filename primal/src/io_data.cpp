@@ -164,8 +164,13 @@ MeshData read_vtk_data(std::string_view text, const std::string& name) {
         const std::string comps(after);
         char* end = nullptr;
         const long long c = std::strtoll(comps.c_str(), &end, 10);
-        if (*end != '\0' || c < 1 || c > 4)
-          lex.fail("SCALARS " + array + ": expected 1 to 4 components, found '" + comps + "'");
+        if (*end != '\0' || c < 1 || c > 4) {
+          lex.fail(std::string("SCALARS ")
+                       .append(array)
+                       .append(": expected 1 to 4 components, found '")
+                       .append(comps)
+                       .append("'"));
+        }
         components = static_cast<std::size_t>(c);
         if (!iequal(lex.need("LOOKUP_TABLE"), "LOOKUP_TABLE"))
           lex.fail("SCALARS " + array + " has no LOOKUP_TABLE line");
@@ -265,10 +270,11 @@ MeshData read_vtu_data(std::string_view text, const std::string& name) {
       const std::string_view tag = text.substr(pos, tag_end - pos);
       std::string array(xml_attr(tag, "Name"));
       if (array.empty()) lex.fail("a DataArray of <" + std::string(element) + "> has no Name");
-      if (xml_attr(tag, "format") != "ascii")
+      if (xml_attr(tag, "format") != "ascii") {
         lex.fail("DataArray '" + array +
                  "' is not stored as ascii; save the file with ASCII data (ParaView: Data "
                  "Mode = Ascii)");
+      }
       const std::string_view type = xml_attr(tag, "type");
       const std::string comps(xml_attr(tag, "NumberOfComponents"));
       const std::size_t components =
@@ -330,7 +336,10 @@ MeshData read_msh_data(std::string_view text, const std::string& name) {
       }
     }
     const std::string end = cells ? "$EndElementData" : "$EndNodeData";
-    if (lex.need(end) != end) lex.fail("expected " + end + " after data '" + array + "'");
+    if (lex.need(end) != end) {
+      lex.fail(
+          std::string("expected ").append(end).append(" after data '").append(array).append("'"));
+    }
     keep(cells ? out.cells : out.points, std::move(a));
   }
   return out;

@@ -141,15 +141,17 @@ void check_data(const MeshData& data, std::size_t cells, std::size_t points,
           !a.name.empty() && std::all_of(a.name.begin(), a.name.end(), [](char c) {
             return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_';
           });
-      if (!good_name)
+      if (!good_name) {
         throw InvalidInput("cannot write " + path.string() + ": " + std::string(kind) +
                            " array name '" + a.name +
                            "' is empty or has characters other than letters, digits and _");
-      if (a.values.size() != expected)
+      }
+      if (a.values.size() != expected) {
         throw InvalidInput("cannot write " + path.string() + ": " + std::string(kind) + " array '" +
                            a.name + "' has " + std::to_string(a.values.size()) + " values for " +
                            std::to_string(expected) + " " + std::string(kind) +
                            "s (a bug in the caller)");
+      }
     }
   };
   check(data.cells, cells, "cell");

@@ -117,11 +117,12 @@ void TraceDigest::add(const weave::TraceEvent& event) {
 
 WeaveHistory weave_history(const weave::WeaveResult& woven, const TraceDigest* digest) {
   const std::size_t m = woven.complex.hexes.size();
-  if (woven.hex_shrink.size() != m || woven.hex_rule.size() != m)
+  if (woven.hex_shrink.size() != m || woven.hex_rule.size() != m) {
     throw InvalidInput("weave history: the weave result lists the shrink of " +
                        std::to_string(woven.hex_shrink.size()) + " and the rule of " +
                        std::to_string(woven.hex_rule.size()) + " hexes for " + std::to_string(m) +
                        " hexes; pass the WeaveResult the hexes came from");
+  }
   TraceDigest own;
   if (digest == nullptr) {
     for (const weave::TraceEvent& e : woven.trace) own.add(e);
@@ -206,14 +207,16 @@ std::vector<std::int32_t> hex_layers(const std::vector<std::array<std::int32_t, 
 MeshData hex_mesh_data(const HexMesh& mesh, const stc::HexStc& stc, const WeaveHistory* history) {
   const std::size_t m = mesh.complex.hexes.size();
   const auto n = static_cast<std::size_t>(mesh.points.rows());
-  if (stc.vertices.size() != m)
+  if (stc.vertices.size() != m) {
     throw InvalidInput("hex mesh data: the STC has " + std::to_string(stc.vertices.size()) +
                        " vertices for " + std::to_string(m) +
                        " hexes; build it from this mesh (stc::build_hex_stc)");
-  if (history != nullptr && (history->hex_shrink.size() != m || history->hex_rule.size() != m))
+  }
+  if (history != nullptr && (history->hex_shrink.size() != m || history->hex_rule.size() != m)) {
     throw InvalidInput("hex mesh data: the weave history covers " +
                        std::to_string(history->hex_shrink.size()) + " hexes, the mesh has " +
                        std::to_string(m) + "; pass the history of the weave that made it");
+  }
   MeshData data;
   DataArray sj;
   sj.name = "scaled_jacobian";

@@ -60,10 +60,11 @@ const primal::DataArray* cell_array(const primal::MeshData& data, std::string_vi
                                     std::size_t hexes) {
   const primal::DataArray* a = data.cell(name);
   if (a == nullptr) return nullptr;
-  if (a->values.size() != hexes)
+  if (a->values.size() != hexes) {
     throw InvalidInput("viewer: cell array '" + std::string(name) + "' has " +
                        std::to_string(a->values.size()) + " values for " + std::to_string(hexes) +
                        " hexes; it does not belong to this mesh");
+  }
   return a;
 }
 
@@ -108,11 +109,13 @@ nlohmann::json page_data(const primal::HexMesh& mesh, const stc::HexStc& stc,
   if (stc.vertices.size() != m)
     throw InvalidInput("viewer: the STC has " + std::to_string(stc.vertices.size()) +
                        " vertices for " + std::to_string(m) + " hexes; build it from this mesh");
-  for (const auto& h : mesh.complex.hexes)
-    for (const NodeId v : h)
+  for (const auto& h : mesh.complex.hexes) {
+    for (const NodeId v : h) {
       if (!v.is_valid() || v.index() >= n)
         throw InvalidInput("viewer: a hex uses node " + v.str() + " but the mesh has " +
                            std::to_string(n) + " points");
+    }
+  }
   nlohmann::json j;
   j["title"] = options.title;
   j["hexes"] = m;
@@ -259,10 +262,11 @@ std::string base64(const std::vector<std::uint8_t>& bytes) {
 
 std::string page_html(const primal::HexMesh& mesh, const stc::HexStc& stc,
                       const primal::MeshData& data, const PageOptions& options) {
-  if (!detail::has_three())
+  if (!detail::has_three()) {
     throw Unsupported(
         "stcweave was built without three.js, so it cannot make the browser page: install "
         "Debian's libjs-three (./dev.sh installs it) and rebuild");
+  }
   const std::string json = script_safe(page_data(mesh, stc, data, options).dump());
   const std::string_view tpl = detail::page_html();
   std::string out;
