@@ -189,7 +189,10 @@ int run_mesh(const MeshArgs& a) {
     throw Unsupported(
         "--html: this stcweave was built without three.js, so it cannot make the "
         "page; install Debian's libjs-three (./dev.sh installs it) and rebuild");
-  const bool want_cell_data = !a.no_cell_data || !a.html.empty();
+  const bool format_has_data =
+      out_format == primal::Format::Vtk || out_format == primal::Format::Vtu ||
+      out_format == primal::Format::Msh || out_format == primal::Format::Msh2;
+  const bool want_cell_data = (!a.no_cell_data && format_has_data) || !a.html.empty();
   auto digest = std::make_shared<primal::TraceDigest>();
   if (want_cell_data) {
     options.weave.on_trace = [previous = options.weave.on_trace,
