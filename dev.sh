@@ -3,7 +3,8 @@
 #   ./dev.sh run   install what is missing, build the stcweave program only (Release, in
 #                  build/), mesh data/lblock.obj
 #   ./dev.sh test  install what is missing, build everything (tests, benchmarks), run the
-#                  whole test suite (ctest); the reason of every skipped test is printed
+#                  whole test suite (ctest; installs chromium for the browser tests); the
+#                  reason of every skipped test is printed
 #   ./dev.sh build install what is missing, build
 #   ./dev.sh lint  also install clang-format and clang-tidy; check the formatting of every
 #                  C++ file and run clang-tidy (.clang-tidy) on the libraries and the CLI
@@ -13,7 +14,7 @@ cd "$(dirname "$0")"
 
 PACKAGES=(cmake g++ make pkg-config libboost-graph-dev libeigen3-dev nlohmann-json3-dev
   libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev liblbfgspp-dev
-  libgmsh-dev)
+  libgmsh-dev libjs-three)
 BUILD_DIR=${STCWEAVE_BUILD_DIR:-build}
 JOBS=${STCWEAVE_JOBS:-$(nproc 2>/dev/null || echo 2)}
 
@@ -77,7 +78,7 @@ case "$cmd" in
     "$BUILD_DIR/bin/stcweave" mesh data/lblock.obj -o "$BUILD_DIR/out/lblock.vtk" \
       --report "$BUILD_DIR/out/lblock.report.json" ;;
   test)
-    build
+    build chromium  # headless Chromium for the browser page's tests (ctest label browser)
     cd "$BUILD_DIR"
     status=0
     ctest --output-on-failure -j "$JOBS" || status=$?

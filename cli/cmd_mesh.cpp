@@ -13,9 +13,11 @@
 #include "cad_input.hpp"
 #include "commands.hpp"
 #include "stcweave/primal/io.hpp"
+#include "stcweave/primal/mesh_data.hpp"
 #include "stcweave/primal/pipeline.hpp"
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/stc/hex_stc.hpp"
+#include "stcweave/viewer/page.hpp"
 #include "weave_options.hpp"
 
 namespace stcweave::cli {
@@ -48,6 +50,9 @@ struct MeshArgs {
   double good_start = primal::PositionOptions{}.good_start;
   int certify_depth = 4;
   CadArgs cad;  // CAD input: --size, --cad-recipe, --surface-out
+  // Cell data and the browser page (issue 16).
+  bool no_cell_data = false;
+  std::string html;
 };
 
 /// The position report as JSON (hex ids as "h12").
@@ -200,6 +205,24 @@ int run_mesh(const MeshArgs& a) {
   const primal::Format out_format = a.output_format == "auto"
                                         ? primal::format_from_path(a.output)
                                         : primal::format_from_name(a.output_format);
+  // Cell data and the browser page: the digest keeps what they show of the trace (the
+  // selection of each shrink, the node of each rule), not the whole trace.
+  if (!a.html.empty() && !viewer::has_three_js())
+    throw Unsupported(
+        "--html: this stcweave was built without three.js, so it cannot make the "
+        "page; install Debian's libjs-three (./dev.sh installs it) and rebuild");
+  const bool format_has_data =
+      out_format == primal::Format::Vtk || out_format == primal::Format::Vtu ||
+      out_format == primal::Format::Msh || out_format == primal::Format::Msh2;
+  const bool want_cell_data = (!a.no_cell_data && format_has_data) || !a.html.empty();
+  auto digest = std::make_shared<primal::TraceDigest>();
+  if (want_cell_data) {
+    options.weave.on_trace = [previous = options.weave.on_trace,
+                              digest](const weave::TraceEvent& e) {
+      if (previous) previous(e);
+      digest->add(e);
+    };
+  }
   // A CAD input is meshed into a quad surface first (cad_input.hpp); any other is read.
   const InputSurface input = read_input(
       a.input,
@@ -226,7 +249,19 @@ int run_mesh(const MeshArgs& a) {
   const bool inverted_left = a.fail_on_inverted && r.quality.inverted > 0;
   const bool write_mesh = !inverted_left || a.keep_invalid;
   const auto t1 = std::chrono::steady_clock::now();
-  if (write_mesh) primal::write_hex_mesh(r.mesh, a.output, out_format);
+  const primal::WeaveHistory history = primal::weave_history(r.woven, digest.get());
+  const primal::MeshData cell_data =
+      want_cell_data ? primal::hex_mesh_data(r.mesh, stc, &history) : primal::MeshData{};
+  if (write_mesh)
+    primal::write_hex_mesh(r.mesh, a.no_cell_data ? primal::MeshData{} : cell_data, a.output,
+                           out_format);
+  if (!a.html.empty()) {
+    viewer::PageOptions page;
+    page.title = std::filesystem::path(a.input).filename().string();
+    page.shrinks = history.shrinks;
+    page.hex_nodes = history.hex_node;
+    viewer::write_page(a.html, r.mesh, stc, cell_data, page);
+  }
   const double write_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
 
@@ -436,6 +471,13 @@ Action add_mesh_command(CLI::App& app) {
                   "subdivision depth of the Bezier validity certification of every hex")
       ->capture_default_str()
       ->check(CLI::Range(0, 8));
+  sub->add_flag("--no-cell-data", args->no_cell_data,
+                "write the mesh alone: no cell data (scaled_jacobian, sheet_0..2, chord_0..2, "
+                "layer, creation_step, shrink, rule, depth) and no point data (boundary, "
+                "valence) in VTK, VTU and MSH output");
+  sub->add_option("--html", args->html,
+                  "also write the browser page of the mesh (self-contained HTML, three.js "
+                  "inlined): replay of the weave, sheets, quality; see `stcweave view`");
   sub->add_flag("--progress", args->progress, "print stage and weaving progress on stderr");
   sub->add_flag("-q,--quiet", args->quiet, "print nothing on success");
   return [args] { return run_mesh(*args); };

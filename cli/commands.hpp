@@ -26,5 +26,6 @@ Action add_check_command(CLI::App& app);
 Action add_bench_command(CLI::App& app);
 Action add_generate_command(CLI::App& app);
 Action add_quality_command(CLI::App& app);
+Action add_view_command(CLI::App& app);
 
 }  // namespace stcweave::cli

@@ -33,6 +33,7 @@ int run(int argc, char** argv) {
   add(cli::add_bench_command);
   add(cli::add_generate_command);
   add(cli::add_quality_command);
+  add(cli::add_view_command);
 
   try {
     app.parse(argc, argv);

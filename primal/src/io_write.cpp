@@ -4,7 +4,9 @@
 /// temporary file in the target's folder and renames it over the target: a failure never
 /// leaves a truncated file in place of a good one.
 
+#include <algorithm>
 #include <array>
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -13,6 +15,7 @@
 #include <string_view>
 
 #include "stcweave/primal/io.hpp"
+#include "stcweave/primal/mesh_data.hpp"
 #include "stcweave/stc/errors.hpp"
 
 namespace stcweave::primal {
@@ -128,7 +131,97 @@ std::string vtk_hex(const HexMesh& mesh) {
   return o.text();
 }
 
-std::string vtu_hex(const HexMesh& mesh) {
+/// Checks that every array of `data` has a valid name and one value per cell / point.
+void check_data(const MeshData& data, std::size_t cells, std::size_t points,
+                const std::filesystem::path& path) {
+  const auto check = [&](const std::vector<DataArray>& arrays, std::size_t expected,
+                         std::string_view kind) {
+    for (const DataArray& a : arrays) {
+      const bool good_name =
+          !a.name.empty() && std::all_of(a.name.begin(), a.name.end(), [](char c) {
+            return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_';
+          });
+      if (!good_name) {
+        throw InvalidInput("cannot write " + path.string() + ": " + std::string(kind) +
+                           " array name '" + a.name +
+                           "' is empty or has characters other than letters, digits and _");
+      }
+      if (a.values.size() != expected) {
+        throw InvalidInput("cannot write " + path.string() + ": " + std::string(kind) + " array '" +
+                           a.name + "' has " + std::to_string(a.values.size()) + " values for " +
+                           std::to_string(expected) + " " + std::string(kind) +
+                           "s (a bug in the caller)");
+      }
+    }
+  };
+  check(data.cells, cells, "cell");
+  check(data.points, points, "point");
+}
+
+/// One value of an array, as its type says.
+void value(Out& o, const DataArray& a, std::size_t i) {
+  if (a.type == DataType::Int32) {
+    o.integer(static_cast<long long>(a.values[i]));
+  } else {
+    o.real(a.values[i]);
+  }
+}
+
+/// Legacy VTK `CELL_DATA` and `POINT_DATA` sections (SCALARS, one per array).
+void vtk_data(Out& o, const MeshData& data, std::size_t cells, std::size_t points) {
+  const auto section = [&](const std::vector<DataArray>& arrays, std::string_view keyword,
+                           std::size_t count) {
+    if (arrays.empty()) return;
+    o << keyword << ' ';
+    o.integer(static_cast<long long>(count)) << '\n';
+    for (const DataArray& a : arrays) {
+      o << "SCALARS " << a.name << (a.type == DataType::Int32 ? " int 1\n" : " double 1\n");
+      o << "LOOKUP_TABLE default\n";
+      for (std::size_t i = 0; i < count; ++i) value(o, a, i), o << '\n';
+    }
+  };
+  section(data.cells, "CELL_DATA", cells);
+  section(data.points, "POINT_DATA", points);
+}
+
+/// VTU `<PointData>` and `<CellData>` elements (they come first in a `<Piece>`).
+void vtu_data(Out& o, const MeshData& data, std::size_t cells, std::size_t points) {
+  const auto section = [&](const std::vector<DataArray>& arrays, std::string_view element,
+                           std::size_t count) {
+    if (arrays.empty()) return;
+    o << "      <" << element << ">\n";
+    for (const DataArray& a : arrays) {
+      o << "        <DataArray type=\"" << (a.type == DataType::Int32 ? "Int32" : "Float64")
+        << "\" Name=\"" << a.name << "\" format=\"ascii\">\n";
+      for (std::size_t i = 0; i < count; ++i) value(o, a, i), o << '\n';
+      o << "        </DataArray>\n";
+    }
+    o << "      </" << element << ">\n";
+  };
+  section(data.points, "PointData", points);
+  section(data.cells, "CellData", cells);
+}
+
+/// Gmsh `$NodeData` and `$ElementData` sections (same syntax in MSH 2.2 and 4.1): one view
+/// per array, at time 0, one component, entities tagged 1..count as the writers number them.
+void msh_data(Out& o, const MeshData& data, std::size_t cells, std::size_t points) {
+  const auto section = [&](const std::vector<DataArray>& arrays, std::string_view keyword,
+                           std::size_t count) {
+    for (const DataArray& a : arrays) {
+      o << '$' << keyword << "\n1\n\"" << a.name << "\"\n1\n0\n3\n0\n1\n";
+      o.integer(static_cast<long long>(count)) << '\n';
+      for (std::size_t i = 0; i < count; ++i) {
+        o.integer(static_cast<long long>(i) + 1) << ' ';
+        value(o, a, i), o << '\n';
+      }
+      o << "$End" << keyword << '\n';
+    }
+  };
+  section(data.points, "NodeData", points);
+  section(data.cells, "ElementData", cells);
+}
+
+std::string vtu_hex(const HexMesh& mesh, const MeshData& data) {
   Out o;
   const auto n = mesh.points.rows();
   const std::size_t m = mesh.complex.hexes.size();
@@ -138,6 +231,7 @@ std::string vtu_hex(const HexMesh& mesh) {
        "    <Piece NumberOfPoints=\"";
   o.integer(n) << "\" NumberOfCells=\"";
   o.integer(static_cast<long long>(m)) << "\">\n";
+  vtu_data(o, data, m, static_cast<std::size_t>(n));
   o << "      <Points>\n"
        "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
   for (Eigen::Index i = 0; i < n; ++i) o.point(mesh.points, i) << '\n';
@@ -295,22 +389,36 @@ std::string vtk_surface(const SurfaceMesh& mesh) {
 }  // namespace
 
 void write_hex_mesh(const HexMesh& mesh, const std::filesystem::path& path, Format format) {
+  write_hex_mesh(mesh, MeshData{}, path, format);
+}
+
+void write_hex_mesh(const HexMesh& mesh, const MeshData& data, const std::filesystem::path& path,
+                    Format format) {
   if (format == Format::Auto) format = format_from_path(path);
   check_nodes(mesh.complex.hexes, mesh.points, "hex", path);
+  const std::size_t cells = mesh.complex.hexes.size();
+  const auto points = static_cast<std::size_t>(mesh.points.rows());
+  check_data(data, cells, points, path);
   std::string text;
   switch (format) {
-    case Format::Vtk:
+    case Format::Vtk: {
       text = vtk_hex(mesh);
+      Out o;
+      vtk_data(o, data, cells, points);
+      text += o.text();
       break;
+    }
     case Format::Vtu:
-      text = vtu_hex(mesh);
+      text = vtu_hex(mesh, data);
       break;
     case Format::Msh:
-      text = msh41_hex(mesh);
+    case Format::Msh2: {
+      text = format == Format::Msh ? msh41_hex(mesh) : msh22_hex(mesh);
+      Out o;
+      msh_data(o, data, cells, points);
+      text += o.text();
       break;
-    case Format::Msh2:
-      text = msh22_hex(mesh);
-      break;
+    }
     case Format::Medit:
       text = medit_hex(mesh);
       break;

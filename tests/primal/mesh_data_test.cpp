@@ -1,0 +1,255 @@
+// Cell and point data (mesh_data.hpp): what hex_mesh_data computes on meshes whose answer is
+// known, the weave history of a real weave, and every writer that stores data read back by
+// read_mesh_data (values exact, the mesh itself still readable by read_mesh).
+#include "stcweave/primal/mesh_data.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "stcweave/primal/pipeline.hpp"
+#include "stcweave/primal/quality.hpp"
+#include "stcweave/stc/errors.hpp"
+#include "support/shapes.hpp"
+
+namespace stcweave::primal {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+fs::path temp_dir() {
+  const fs::path d =
+      fs::temp_directory_path() /
+      ("stcweave_mesh_data_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  fs::create_directories(d);
+  return d;
+}
+
+MeshFile file_of(const SurfaceMesh& s, const std::string& name) {
+  MeshFile f;
+  f.path = name;
+  f.format = "memory";
+  f.points = s.points;
+  f.quads = s.surface.quads;
+  return f;
+}
+
+const DataArray& cell(const MeshData& d, const std::string& name) {
+  const DataArray* a = d.cell(name);
+  if (a == nullptr) throw std::runtime_error("no cell array " + name);
+  return *a;
+}
+
+TEST(MeshData, BoxSheetsChordsLayersBoundaryAndValence) {
+  // A 3 x 4 x 5 box: 12 sheets (one per slab), 47 chords, layers 0..1, every node a corner
+  // of 1, 2, 4 or 8 hexes.
+  HexMesh box = test::box_hexes(3, 4, 5);
+  box.points.col(0) *= 2.0;  // a skewed box still has scaled Jacobian 1 (an affine map of a cube)
+  const stc::HexStc stc = stc::build_hex_stc(box.complex);
+  const MeshData d = hex_mesh_data(box, stc);
+  ASSERT_EQ(cell(d, "scaled_jacobian").values.size(), 60U);
+  for (const double v : cell(d, "scaled_jacobian").values) EXPECT_NEAR(v, 1.0, 1e-12);
+  std::set<double> sheets;
+  for (const char* name : {"sheet_0", "sheet_1", "sheet_2"})
+    for (const double v : cell(d, name).values) sheets.insert(v);
+  EXPECT_EQ(sheets.size(), 3U + 4U + 5U);
+  std::set<double> chords;
+  for (const char* name : {"chord_0", "chord_1", "chord_2"})
+    for (const double v : cell(d, name).values) chords.insert(v);
+  EXPECT_EQ(chords.size(), 4U * 5U + 3U * 5U + 3U * 4U);
+  // Interior hexes of a 3 x 4 x 5 box: 1 x 2 x 3 = 6 at layer 1, the others at layer 0.
+  std::size_t deep = 0;
+  for (const double v : cell(d, "layer").values) {
+    EXPECT_TRUE(v == 0.0 || v == 1.0) << v;
+    deep += v == 1.0 ? 1 : 0;
+  }
+  EXPECT_EQ(deep, 6U);
+  EXPECT_EQ(d.cell("creation_step"), nullptr);  // no weave: no weave arrays
+  const DataArray* boundary = d.point("boundary");
+  const DataArray* valence = d.point("valence");
+  ASSERT_NE(boundary, nullptr);
+  ASSERT_NE(valence, nullptr);
+  std::map<double, std::size_t> by_valence;
+  std::size_t on_boundary = 0;
+  for (std::size_t v = 0; v < valence->values.size(); ++v) {
+    ++by_valence[valence->values[v]];
+    on_boundary += boundary->values[v] == 1.0 ? 1 : 0;
+    EXPECT_EQ(boundary->values[v] == 1.0, valence->values[v] < 8.0) << "node " << v;
+  }
+  EXPECT_EQ(by_valence[1.0], 8U);            // corners
+  EXPECT_EQ(by_valence[8.0], 2U * 3U * 4U);  // interior nodes
+  EXPECT_EQ(on_boundary, 4U * 5U * 6U - 2U * 3U * 4U);
+}
+
+TEST(MeshData, FaceNeighboursAreSymmetric) {
+  const HexMesh mesh = test::voxel_hexes(test::lblock_cells());
+  const auto nb = hex_face_neighbours(mesh.complex);
+  std::size_t boundary = 0;
+  for (std::size_t h = 0; h < nb.size(); ++h) {
+    for (const std::int32_t o : nb[h]) {
+      if (o < 0) {
+        EXPECT_EQ(o, -1);
+        ++boundary;
+        continue;
+      }
+      const auto& back = nb[static_cast<std::size_t>(o)];
+      EXPECT_NE(std::find(back.begin(), back.end(), static_cast<std::int32_t>(h)), back.end());
+    }
+  }
+  EXPECT_EQ(boundary, stc::boundary_surface(mesh.complex).quads.size());
+}
+
+TEST(MeshData, WeaveHistoryOfARealWeave) {
+  MeshOptions options;
+  TraceDigest digest;
+  options.weave.on_trace = [&](const weave::TraceEvent& e) { digest.add(e); };
+  const MeshResult r = mesh_file(file_of(test::box_surface(3, 3, 4), "box"), options);
+  const WeaveHistory h = weave_history(r.woven, &digest);
+  const std::size_t m = r.mesh.complex.hexes.size();
+  ASSERT_EQ(m, 36U);
+  ASSERT_FALSE(h.shrinks.empty());
+  const stc::HexStc stc = stc::build_hex_stc(r.mesh.complex);
+  const MeshData d = hex_mesh_data(r.mesh, stc, &h);
+  for (std::size_t i = 0; i < m; ++i) {
+    EXPECT_EQ(cell(d, "creation_step").values[i], static_cast<double>(i));
+    EXPECT_EQ(cell(d, "shrink").values[i], r.woven.hex_shrink[i]);
+    EXPECT_EQ(cell(d, "rule").values[i], rule_code(r.woven.hex_rule[i]));
+    const ShrinkRecord* s = h.shrink(r.woven.hex_shrink[i]);
+    ASSERT_NE(s, nullptr) << "hex " << i << " of shrink " << r.woven.hex_shrink[i];
+    EXPECT_EQ(cell(d, "depth").values[i], s->depth);
+    EXPECT_TRUE(h.hex_node[i].is_valid());
+  }
+  // The same history from the full trace kept in the result.
+  options.weave.on_trace = nullptr;
+  options.weave.trace = true;
+  const MeshResult r2 = mesh_file(file_of(test::box_surface(3, 3, 4), "box"), options);
+  const WeaveHistory h2 = weave_history(r2.woven);
+  ASSERT_EQ(h2.shrinks.size(), h.shrinks.size());
+  for (std::size_t i = 0; i < h.shrinks.size(); ++i) {
+    EXPECT_EQ(h2.shrinks[i].shrink, h.shrinks[i].shrink);
+    EXPECT_EQ(h2.shrinks[i].loop, h.shrinks[i].loop);
+    EXPECT_EQ(h2.shrinks[i].depth, h.shrinks[i].depth);
+  }
+  EXPECT_EQ(h2.hex_node, h.hex_node);
+}
+
+TEST(MeshData, RuleCodes) {
+  for (const char* name : {"cross", "cross-relaxed", "blind-chord", "parallel-merge"})
+    EXPECT_EQ(rule_name(rule_code(name)), name);
+  EXPECT_EQ(rule_code("some-new-rule"), kRuleOther);
+  EXPECT_EQ(rule_name(42), "other");
+}
+
+/// A mesh with data of both types, values that need all 17 digits, negative integers.
+std::pair<HexMesh, MeshData> sample() {
+  HexMesh mesh = test::box_hexes(2, 1, 2);
+  mesh.points(3, 1) += 0.1234567890123;
+  const stc::HexStc stc = stc::build_hex_stc(mesh.complex);
+  MeshData d = hex_mesh_data(mesh, stc);
+  DataArray extra;
+  extra.name = "signed";
+  extra.type = DataType::Int32;
+  extra.values = {-3, 7, -1, 2147483647};
+  d.cells.push_back(extra);
+  return {mesh, d};
+}
+
+class WriterData : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(WriterData, ReadsBackEveryArray) {
+  const auto [mesh, data] = sample();
+  const fs::path dir = temp_dir();
+  const std::string ext = GetParam() == "msh2" ? ".msh" : "." + GetParam();
+  const fs::path path = dir / ("data_" + GetParam() + ext);
+  write_hex_mesh(mesh, data, path, format_from_name(GetParam()));
+  const MeshData back = read_mesh_data(path);
+  ASSERT_EQ(back.cells.size(), data.cells.size());
+  ASSERT_EQ(back.points.size(), data.points.size());
+  for (std::size_t i = 0; i < data.cells.size(); ++i) {
+    EXPECT_EQ(back.cells[i].name, data.cells[i].name);
+    EXPECT_EQ(back.cells[i].values, data.cells[i].values) << data.cells[i].name;
+    if (GetParam() != "msh" && GetParam() != "msh2")  // Gmsh data has no type: reals
+      EXPECT_EQ(back.cells[i].type, data.cells[i].type) << data.cells[i].name;
+  }
+  for (std::size_t i = 0; i < data.points.size(); ++i) {
+    EXPECT_EQ(back.points[i].name, data.points[i].name);
+    EXPECT_EQ(back.points[i].values, data.points[i].values) << data.points[i].name;
+  }
+  // The mesh reader still reads the mesh in spite of the data sections.
+  const MeshFile f = read_mesh(path);
+  EXPECT_EQ(f.hexes.size(), mesh.complex.hexes.size());
+  EXPECT_EQ(f.points.rows(), mesh.points.rows());
+  // No data: the bytes of the plain writer.
+  const fs::path plain = dir / ("plain_" + GetParam() + ext);
+  const fs::path empty = dir / ("empty_" + GetParam() + ext);
+  write_hex_mesh(mesh, plain, format_from_name(GetParam()));
+  write_hex_mesh(mesh, MeshData{}, empty, format_from_name(GetParam()));
+  EXPECT_EQ(slurp(plain), slurp(empty));
+  EXPECT_TRUE(read_mesh_data(plain).empty());
+}
+
+INSTANTIATE_TEST_SUITE_P(Formats, WriterData, ::testing::Values("vtk", "vtu", "msh", "msh2"));
+
+TEST(MeshData, FormatsWithoutDataGetTheMeshAlone) {
+  const auto [mesh, data] = sample();
+  const fs::path dir = temp_dir();
+  for (const char* ext : {".mesh", ".inp"}) {
+    write_hex_mesh(mesh, data, dir / ("with" + std::string(ext)));
+    write_hex_mesh(mesh, dir / ("without" + std::string(ext)));
+    EXPECT_EQ(slurp(dir / ("with" + std::string(ext))),
+              slurp(dir / ("without" + std::string(ext))));
+  }
+}
+
+TEST(MeshData, WritersRefuseBadArrays) {
+  auto [mesh, data] = sample();
+  const fs::path path = temp_dir() / "bad.vtk";
+  MeshData short_array = data;
+  short_array.cells[0].values.pop_back();
+  EXPECT_THROW(write_hex_mesh(mesh, short_array, path), InvalidInput);
+  MeshData bad_name = data;
+  bad_name.points[0].name = "has space";
+  EXPECT_THROW(write_hex_mesh(mesh, bad_name, path), InvalidInput);
+  EXPECT_FALSE(fs::exists(path));
+}
+
+TEST(MeshData, ReaderReportsMalformedSections) {
+  const std::string head =
+      "# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 0 double\n"
+      "CELLS 0 0\nCELL_TYPES 0\n";
+  try {
+    (void)read_mesh_data(head + "CELL_DATA 2\nSCALARS a int 1\nLOOKUP_TABLE default\n1\n",
+                         Format::Vtk, "t.vtk");
+    FAIL() << "a short array was accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("t.vtk:"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW((void)read_mesh_data(head + "CELL_DATA 1\nBOGUS x\n", Format::Vtk, "t.vtk"),
+               InvalidInput);
+  EXPECT_THROW((void)read_mesh_data(head + "CELL_DATA 99999999999\n", Format::Vtk, "t.vtk"),
+               InvalidInput);
+  EXPECT_THROW((void)read_mesh_data("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$ElementData\n1\n"
+                                    "\"a\"\n1\n0\n3\n0\n1\n2\n1 5\n",
+                                    Format::Msh, "t.msh"),
+               InvalidInput);
+  // FIELD arrays, as ParaView writes them, are read too.
+  const MeshData f = read_mesh_data(
+      head + "CELL_DATA 2\nFIELD FieldData 1\nq 1 2 double\n0.5 0.25\n", Format::Vtk, "t.vtk");
+  ASSERT_NE(f.cell("q"), nullptr);
+  EXPECT_EQ(f.cell("q")->values, (std::vector<double>{0.5, 0.25}));
+}
+
+}  // namespace
+}  // namespace stcweave::primal
