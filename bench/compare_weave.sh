@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Byte-for-byte regression check of the weaver through the CLI.
 #
-#   bench/compare_weave.sh DIR [--bin PATH] [--timeout S] [--shared N] [--skip-from DIR]
+#   bench/compare_weave.sh DIR [--bin PATH] [--timeout S] [--shared N] [--weavable]
 #
 # First invocation (DIR absent): runs `stcweave mesh` on data/lblock.obj, every input of
 # bench/generated.manifest and the first N (default 40) inputs of bench/shared.manifest,
@@ -10,7 +10,9 @@
 #   NAME.RULES.json   the report without timings and paths (hexes, quality, weave stats, ...)
 #   NAME.RULES.trace  the --trace JSONL
 #   NAME.RULES.rc     the exit code (and the first stderr line)
-# A run over the time limit (default 60 s) is recorded as skipped.
+# A run over the time limit (default 60 s) is recorded as skipped. With --weavable, the shared
+# inputs taken are those the manifest marks genus 0 without self-intersecting loops (the ones
+# that reach the weaver), and lblock and the generated shapes are left out.
 # Second invocation (DIR present): runs the same list into DIR.new and diffs every file
 # against DIR (inputs skipped in DIR are skipped again). Exit 0 when every file is identical.
 #
@@ -25,11 +27,13 @@ shift
 bin="$root/build/bin/stcweave"
 limit=60
 shared=40
+weavable=0
 while [[ $# -gt 0 ]]; do
   case $1 in
     --bin) bin=$2; shift 2 ;;
     --timeout) limit=$2; shift 2 ;;
     --shared) shared=$2; shift 2 ;;
+    --weavable) weavable=1; shift ;;
     *) echo "unknown option $1" >&2; exit 1 ;;
   esac
 done
@@ -48,8 +52,8 @@ mkdir -p "$out/inputs"
 # The input list: "NAME PATH" lines.
 list="$out/inputs.txt"
 : >"$list"
-echo "lblock $root/data/lblock.obj" >>"$list"
-while read -r spec _; do
+[[ $weavable -eq 1 ]] || echo "lblock $root/data/lblock.obj" >>"$list"
+while [[ $weavable -eq 0 ]] && read -r spec _; do
   [[ $spec == generate:* ]] || continue
   rest=${spec#generate:}
   kind=${rest%%:*}
@@ -65,8 +69,11 @@ while read -r spec _; do
   echo "$name $file" >>"$list"
 done < <(grep -v '^\s*#' "$here/generated.manifest" | grep -v '^\s*$')
 count=0
-while read -r path _; do
+while read -r path rest; do
   [[ $count -lt $shared ]] || break
+  if [[ $weavable -eq 1 ]]; then
+    [[ $rest == *"genus 0"* && $rest != *self-intersecting* ]] || continue
+  fi
   count=$((count + 1))
   abs="$here/$path"
   [[ -f $abs ]] || { echo "missing shared input $abs (is ../shared/data there?)" >&2; continue; }
