@@ -309,6 +309,35 @@ const Strip* loop_of_length(const FrontLoops& loops, std::size_t n) {
   return nullptr;
 }
 
+TEST(ParallelMerging, ClosesASlabInOneLayer) {
+  // The 2 x 2 x 1 slab: the ring of its eight side faces is one face high, between two discs
+  // of four faces that its transversal edges map onto each other: one hex per face pair.
+  Bench b(test::box_surface(2, 2, 1).surface, RuleSet::Extended);
+  const FrontLoops loops = front_loops(b.state.front);
+  const Strip* ring = loop_of_length(loops, 8);
+  ASSERT_NE(ring, nullptr);
+  const FrontComponents components = front_components(b.state.front, b.ctx.nodes);
+  const RuleResult r = parallel_merging(b.state, b.ctx, *ring, components);
+  ASSERT_TRUE(r.applied) << r.why;
+  EXPECT_EQ(b.state.woven.hexes.size(), 4u);
+  EXPECT_EQ(b.state.front.num_nodes(), b.state.front.num_input_nodes()) << "no node created";
+  // The hexes glue to each other by faces that are still on the front until seams sew them.
+  seam_fixpoint(b.state, b.ctx);
+  EXPECT_EQ(b.state.front.num_faces(), 0u);
+}
+
+TEST(ParallelMerging, ClosesACubeAsOneHex) {
+  // The cube: any loop's strip is the ring between two opposite faces (each rim face borders
+  // all four strip faces).
+  Bench b(cube(), RuleSet::Extended);
+  const FrontLoops loops = front_loops(b.state.front);
+  const FrontComponents components = front_components(b.state.front, b.ctx.nodes);
+  const RuleResult r = parallel_merging(b.state, b.ctx, loops.strips.front(), components);
+  ASSERT_TRUE(r.applied) << r.why;
+  EXPECT_EQ(b.state.woven.hexes.size(), 1u);
+  EXPECT_EQ(b.state.front.num_faces(), 0u);
+}
+
 TEST(ParallelMerging, RefusesWhenTheTwoSidesDiffer) {
   // The 1 x 1 x 2 bar: a ring loop has one face on one side and five on the other.
   Bench b(test::box_surface(1, 1, 2).surface, RuleSet::Extended);

@@ -38,6 +38,9 @@ RuleResult parallel_merging(WeaveState& state, WeaveContext& ctx, const Strip& s
     preimage.emplace(b.index(), a);
     return true;
   };
+  // Side A's rim faces, each once (a face at a corner of the rim borders two strip faces).
+  const std::uint32_t in_a = ctx.faces2.fresh(front.face_capacity());
+  const FaceSet seen{&ctx.faces2, in_a};
   std::vector<FaceIndex> queue;
   for (const stc::StripStep& p : strip) {
     const FaceIndex f = face_of(p);
@@ -50,15 +53,15 @@ RuleResult parallel_merging(WeaveState& state, WeaveContext& ctx, const Strip& s
       const FaceSide g = front.across(f, side);
       if (g.face == kNoFace || on_strip.contains(g.face))
         return RuleResult::refused("the strip is more than one face high");
-      if (side == (p.entry + 3) % 4) queue.push_back(g.face);
+      if (side == (p.entry + 3) % 4 && !seen.contains(g.face)) {
+        ctx.faces2.set(static_cast<std::size_t>(g.face), in_a);
+        queue.push_back(g.face);
+      }
     }
   }
   // Extend the map over side A's region, face by face, from the rim inward.
-  const std::uint32_t in_a = ctx.faces2.fresh(front.face_capacity());
-  const FaceSet seen{&ctx.faces2, in_a};
   std::vector<std::pair<FaceIndex, FaceIndex>> pairs;
   std::vector<FaceIndex> images;
-  for (FaceIndex f : queue) ctx.faces2.set(static_cast<std::size_t>(f), in_a);
   for (std::size_t qi = 0; qi < queue.size(); ++qi) {
     const FaceIndex f = queue[qi];
     const stc::Quad& fq = front.face(f).nodes;
