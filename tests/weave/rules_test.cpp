@@ -475,6 +475,37 @@ void expect_same_front(const Front& a, const Front& b) {
   }
 }
 
+TEST(Backtracking, ACheckpointUndoesAFailedShrinkExactly) {
+  // The driver's undo: a checkpoint before the shrink, a journal of what it changed.
+  Bench b(doublet_cube());
+  const WeaveState pristine = b.state;
+  const FrontLoops loops = front_loops(b.state.front);
+  std::size_t undone = 0;
+  for (const Strip& strip : loops.strips) {
+    for (const stc::LoopSide side : {stc::LoopSide::Left, stc::LoopSide::Right}) {
+      WeaveState::Checkpoint saved = b.state.checkpoint();
+      const std::size_t before = b.ctx.rules_applied;
+      const auto failure = shrink(b.state, b.ctx, strip, side);
+      const bool changed = b.ctx.rules_applied != before;
+      b.state.roll_back(std::move(saved));
+      expect_same_front(b.state.front, pristine.front);
+      EXPECT_EQ(b.state.woven.hexes.size(), 0u);
+      EXPECT_EQ(b.state.woven.hexes_at, pristine.woven.hexes_at);
+      EXPECT_EQ(b.state.seam_work, pristine.seam_work);
+      EXPECT_EQ(b.state.stats.crosses, 0u);
+      undone += changed ? 1 : 0;
+      (void)failure;
+    }
+  }
+  EXPECT_GT(undone, 2u) << "shrinks that changed the front were undone";
+  // A released checkpoint keeps the changes.
+  WeaveState::Checkpoint kept = b.state.checkpoint();
+  ASSERT_TRUE(cross(b.state, b.ctx, NodeId(0)));
+  b.state.release(std::move(kept));
+  EXPECT_EQ(b.state.woven.hexes.size(), 1u);
+  EXPECT_FALSE(b.state.front.check_invariants().has_value());
+}
+
 TEST(Backtracking, AFailedShrinkIsRolledBackExactly) {
   Bench b(doublet_cube());
   const WeaveState pristine = b.state;

@@ -22,6 +22,14 @@ WeaveState::WeaveState(const stc::QuadSurface& surface) : front(surface) {
   woven.hexes_at.resize(front.num_nodes());
 }
 
+void WeaveState::add_hex_at(NodeId n, HexId h) {
+  woven.hexes_at[n.index()].push_back(h);
+  if (open_checkpoints_ > 0) {
+    journal_.push_back(
+        {WovenChange::Kind::HexAtPush, static_cast<std::uint32_t>(n.index()), 0, 0, {}});
+  }
+}
+
 NodeId WeaveState::new_node() {
   const NodeId n = front.new_node();
   woven.hexes_at.emplace_back();
@@ -32,6 +40,13 @@ void WeaveState::merge_nodes(NodeId keep, NodeId gone) {
   front.merge_nodes(keep, gone);
   auto& hk = woven.hexes_at[keep.index()];
   auto& hg = woven.hexes_at[gone.index()];
+  if (open_checkpoints_ > 0) {
+    journal_.push_back({WovenChange::Kind::HexAtMerge,
+                        static_cast<std::uint32_t>(keep.index()),
+                        static_cast<std::uint32_t>(gone.index()),
+                        static_cast<std::uint32_t>(hk.size()),
+                        {}});
+  }
   hk.insert(hk.end(), hg.begin(), hg.end());
   hg.clear();
   hg.shrink_to_fit();
@@ -46,6 +61,10 @@ void WeaveState::link(const FaceOwner& a, const FaceOwner& b) {
     if (!self.is_hex()) return;
     DualLink& l =
         woven.dual[static_cast<std::size_t>(self.id)][static_cast<std::size_t>(self.local_face)];
+    if (open_checkpoints_ > 0) {
+      journal_.push_back({WovenChange::Kind::Dual, static_cast<std::uint32_t>(self.id),
+                          static_cast<std::uint32_t>(self.local_face), 0, l});
+    }
     l.is_boundary = other.is_input();
     l.id = other.id;
     l.local_face = other.local_face;
@@ -141,6 +160,58 @@ void WeaveState::roll_back_to(WeaveState&& saved) {
   stats.selections = now.selections;
   stats.failed_shrinks = now.failed_shrinks;
   stats.rolled_back_shrinks = now.rolled_back_shrinks;
+}
+
+WeaveState::Checkpoint WeaveState::checkpoint() {
+  ++open_checkpoints_;
+  return {front.checkpoint(),
+          woven.hexes.size(),
+          woven.hexes_at.size(),
+          journal_.size(),
+          seam_work,
+          blocked_seams,
+          stats};
+}
+
+void WeaveState::roll_back(Checkpoint&& c) {
+  while (journal_.size() > c.journal) {
+    const WovenChange e = journal_.back();
+    journal_.pop_back();
+    switch (e.kind) {
+      case WovenChange::Kind::Dual:
+        woven.dual[e.a][e.b] = e.link;
+        break;
+      case WovenChange::Kind::HexAtPush:
+        woven.hexes_at[e.a].pop_back();
+        break;
+      case WovenChange::Kind::HexAtMerge: {
+        auto& kept = woven.hexes_at[e.a];
+        woven.hexes_at[e.b].assign(kept.begin() + e.c, kept.end());
+        kept.resize(e.c);
+        break;
+      }
+    }
+  }
+  woven.hexes.resize(c.hexes);
+  woven.dual.resize(c.hexes);
+  woven.hex_shrink.resize(c.hexes);
+  woven.hex_rule.resize(c.hexes);
+  woven.hexes_at.resize(c.nodes);
+  front.roll_back(std::move(c.front));
+  seam_work = std::move(c.seam_work);
+  blocked_seams = std::move(c.blocked_seams);
+  const WeaveStats now = stats;
+  stats = c.stats;
+  stats.selections = now.selections;
+  stats.failed_shrinks = now.failed_shrinks;
+  stats.rolled_back_shrinks = now.rolled_back_shrinks;
+  --open_checkpoints_;
+}
+
+void WeaveState::release(Checkpoint&& c) {
+  front.release(std::move(c.front));
+  --open_checkpoints_;
+  if (open_checkpoints_ == 0) journal_.clear();
 }
 
 // ---------------------------------------------------------------------------------------
@@ -239,7 +310,7 @@ HexId make_hex(WeaveState& state, WeaveContext& ctx, const stc::Hex& hex,
                        carried.side_angle[static_cast<std::size_t>(lf)]);
     state.push_nodes_of(f);
   }
-  for (NodeId n : hex) woven.hexes_at[n.index()].push_back(id);
+  for (NodeId n : hex) state.add_hex_at(n, id);
   ctx.after_rule(state, rule, at_node, whiskers, id);
   return id;
 }

@@ -68,9 +68,9 @@ std::size_t rule_budget(const stc::QuadSurface& surface, const WeaveOptions& opt
 }
 
 /// Shrinks the first candidate of `ranking` that shrinks. Backtracking: a shrink that ends
-/// blocked is undone (the state is copied before it) and the next candidate is tried; when
-/// every candidate fails from this front, the first one's partial shrink is kept (the front
-/// changed, so the selection starts again) as the last resort. False when nothing changed;
+/// blocked is undone (a checkpoint of the state is taken before it) and the next candidate is
+/// tried; when every candidate fails from this front, the first one's partial shrink is kept (the
+/// front changed, so the selection starts again) as the last resort. False when nothing changed;
 /// `failures` then says why for each candidate.
 bool shrink_a_candidate(WeaveState& state, WeaveContext& ctx, const FrontLoops& loops,
                         const Ranking& ranking, std::string& failures) {
@@ -93,11 +93,12 @@ bool shrink_a_candidate(WeaveState& state, WeaveContext& ctx, const FrontLoops& 
       }
       ++ctx.shrink_index;
       const std::size_t before = ctx.rules_applied;
-      std::optional<WeaveState> saved;
-      if (backtrack && !last_resort) saved = state;
+      std::optional<WeaveState::Checkpoint> saved;
+      if (backtrack && !last_resort) saved = state.checkpoint();
       const auto failure = shrink(state, ctx, loops.strips[static_cast<std::size_t>(c.loop)],
                                   static_cast<stc::LoopSide>(c.side));
       if (!failure) {
+        if (saved) state.release(std::move(*saved));
         ++state.stats.shrinks;
         return true;
       }
@@ -110,7 +111,7 @@ bool shrink_a_candidate(WeaveState& state, WeaveContext& ctx, const FrontLoops& 
             "\n  loop " + std::to_string(c.loop) + " side " + "AB"[c.side] + ": " + *failure;
       }
       if (saved) {
-        state.roll_back_to(std::move(*saved));
+        state.roll_back(std::move(*saved));
         ++state.stats.rolled_back_shrinks;
         continue;
       }

@@ -17,7 +17,9 @@ namespace stcweave::weave {
 RuleResult blind_chord(WeaveState& state, WeaveContext& ctx, NodeId v, const Strip& strip,
                        const FaceSet& strip_faces) {
   const Front& front = state.front;
-  std::string why = "no strip face at it has a non-strip face across its side edge";
+  // The refusal of the last pair tried (its message is built once, at the end).
+  enum class Refusal { NoPair, SharedEdges, SameHex } last = Refusal::NoPair;
+  HexId same_hex;
   for (const stc::StripStep& p : strip) {
     const FaceIndex f = face_of(p);
     const stc::Quad& n = front.face(f).nodes;
@@ -34,12 +36,13 @@ RuleResult blind_chord(WeaveState& state, WeaveContext& ctx, NodeId v, const Str
     std::array<NodeId, 6> six{s, t, p2, p3, q2, q3};
     std::sort(six.begin(), six.end());
     if (std::adjacent_find(six.begin(), six.end()) != six.end()) {
-      why = "faces share more than one edge's nodes";
+      last = Refusal::SharedEdges;
       continue;
     }
     const FaceOwner of = front.face(f).owner, og = front.face(g.face).owner;
     if (of.is_hex() && og.is_hex() && of.id == og.id) {
-      why = "both faces belong to " + HexId(of.id).str();
+      last = Refusal::SameHex;
+      same_hex = HexId(of.id);
       continue;
     }
     // ---- move (make_hex propagates depth and angles) ----
@@ -50,7 +53,15 @@ RuleResult blind_chord(WeaveState& state, WeaveContext& ctx, NodeId v, const Str
     ++state.stats.blind_chords;
     return RuleResult::done(hex);
   }
-  return RuleResult::refused(why);
+  switch (last) {
+    case Refusal::SharedEdges:
+      return RuleResult::refused("faces share more than one edge's nodes");
+    case Refusal::SameHex:
+      return RuleResult::refused("both faces belong to " + same_hex.str());
+    case Refusal::NoPair:
+      break;
+  }
+  return RuleResult::refused("no strip face at it has a non-strip face across its side edge");
 }
 
 }  // namespace stcweave::weave

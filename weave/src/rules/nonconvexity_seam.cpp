@@ -49,10 +49,10 @@ RuleResult nonconvexity_seam(WeaveState& state, WeaveContext& ctx, FaceIndex f2,
   if (auto conflict = state.merge_conflict(a, d, d, a)) return RuleResult::refused(*conflict);
 
   // ---- move, on a saved state ----
-  WeaveState saved = state;
+  WeaveState::Checkpoint saved = state.checkpoint();
   state.merge_nodes(d, a);
   if (auto conflict = state.merge_conflict(b, c, c, b)) {
-    state.roll_back_to(std::move(saved));
+    state.roll_back(std::move(saved));
     return RuleResult::refused(*conflict);
   }
   state.merge_nodes(c, b);
@@ -87,10 +87,11 @@ RuleResult nonconvexity_seam(WeaveState& state, WeaveContext& ctx, FaceIndex f2,
   std::optional<std::string> broken;
   if (ok) broken = front.check_invariants();
   if (!ok || broken) {
-    state.roll_back_to(std::move(saved));
+    state.roll_back(std::move(saved));
     return RuleResult::refused(ok ? "the fold would break the front: " + *broken
                                   : "the fold would glue two faces that must not meet");
   }
+  state.release(std::move(saved));
   for (FaceIndex f : front.faces_at(c)) state.push_nodes_of(f);
   for (FaceIndex f : front.faces_at(d)) state.push_nodes_of(f);
   ++state.stats.nonconvexity_seams;

@@ -102,6 +102,40 @@ struct WeaveState {
   /// Goes back to `saved` (an earlier copy of this state), keeping the counters of the
   /// selection process (selections, failed and rolled-back shrinks) as they are now.
   void roll_back_to(WeaveState&& saved);
+
+  /// A cheap undo point (what backtracking takes before every shrink): the front's
+  /// checkpoint, the sizes of the woven complex's arrays, and the journal position of the
+  /// changes to existing entries (dual links, per-node hex lists).
+  struct Checkpoint {
+    Front::Checkpoint front;
+    std::size_t hexes = 0;
+    std::size_t nodes = 0;
+    std::size_t journal = 0;
+    std::vector<NodeId> seam_work;
+    std::vector<NodeId> blocked_seams;
+    WeaveStats stats;
+  };
+  [[nodiscard]] Checkpoint checkpoint();
+  /// Undoes every change since `c`, as `roll_back_to` does (the selection counters stay).
+  /// \pre `c` is the innermost open checkpoint.
+  void roll_back(Checkpoint&& c);
+  /// Keeps the changes since `c`. \pre `c` is the innermost open checkpoint.
+  void release(Checkpoint&& c);
+  /// Adds hex `h` to the hex list of node `n`.
+  void add_hex_at(NodeId n, HexId h);
+
+ private:
+  /// A change to an existing entry of the woven complex, journaled while a checkpoint is open.
+  struct WovenChange {
+    enum class Kind : std::uint8_t { Dual, HexAtPush, HexAtMerge };
+    Kind kind = Kind::Dual;
+    std::uint32_t a = 0;  ///< Dual: hex; HexAtPush: node; HexAtMerge: kept node
+    std::uint32_t b = 0;  ///< Dual: local face; HexAtMerge: gone node
+    std::uint32_t c = 0;  ///< HexAtMerge: the kept list's former size
+    DualLink link;        ///< Dual: the former link
+  };
+  std::vector<WovenChange> journal_;
+  int open_checkpoints_ = 0;
 };
 
 /// Scratch marks over nodes or faces: a fresh stamp unmarks every entry in O(1).
