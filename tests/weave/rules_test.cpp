@@ -578,3 +578,27 @@ TEST(Backtracking, TheDriverUndoesFailedShrinksThenKeepsTheFirstAsALastResort) {
 
 }  // namespace
 }  // namespace stcweave::weave
+
+namespace stcweave::weave {
+namespace {
+
+TEST(Observer, SeesWhatTheTraceRecords) {
+  // An observer of one's own beside the trace: both are told about every event.
+  Counter counter;
+  WeaveOptions o;
+  o.trace = true;
+  o.observer = &counter;
+  const WeaveResult r = weave(test::box_surface(2, 2, 3).surface, o);
+  int rules = 0, selections = 0;
+  for (const TraceEvent& e : r.trace) {
+    rules += e.kind == TraceEvent::Kind::Rule ? 1 : 0;
+    selections += e.kind == TraceEvent::Kind::Selection ? 1 : 0;
+  }
+  EXPECT_GT(rules, 0);
+  EXPECT_EQ(counter.rules, rules);
+  EXPECT_EQ(counter.selections, selections);
+  EXPECT_EQ(r.complex.hexes.size(), 12u);
+}
+
+}  // namespace
+}  // namespace stcweave::weave
