@@ -23,8 +23,10 @@ weave::WeaveOptions options_for(std::int64_t rules) {
 
 /// Times weaving `s` with the rule set `rules` (0 reliable, 1 extended) and reports hexes and
 /// hexes per second.
-void measure(benchmark::State& state, const primal::SurfaceMesh& s, std::int64_t rules) {
-  const weave::WeaveOptions options = options_for(rules);
+void measure(benchmark::State& state, const primal::SurfaceMesh& s, std::int64_t rules,
+             bool backtrack = true) {
+  weave::WeaveOptions options = options_for(rules);
+  options.backtrack = backtrack;
   const auto angles =
       rules == 0 ? std::vector<std::array<double, 4>>{} : primal::dihedral_angles(s);
   std::size_t hexes = 0;
@@ -47,6 +49,17 @@ void weave_box(benchmark::State& state) {
 BENCHMARK(weave_box)
     ->ArgNames({"k", "extended"})
     ->ArgsProduct({{4, 8, 16, 24, 32}, {0, 1}})
+    ->Unit(benchmark::kMillisecond);
+
+// The same without backtracking: the difference is the cost of the undo points (one
+// checkpoint per shrink; it was a copy of the whole state before the journal).
+void weave_box_no_backtrack(benchmark::State& state) {
+  const int k = static_cast<int>(state.range(0));
+  measure(state, test::box_surface(k, k, k), state.range(1), false);
+}
+BENCHMARK(weave_box_no_backtrack)
+    ->ArgNames({"k", "extended"})
+    ->ArgsProduct({{16, 32}, {0, 1}})
     ->Unit(benchmark::kMillisecond);
 
 void weave_shared(benchmark::State& state, const std::string& name) {

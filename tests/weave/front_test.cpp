@@ -70,5 +70,75 @@ TEST(Front, MergeRewritesFacesAndUnionFind) {
   EXPECT_FALSE(front.is_input_node(a));
 }
 
+TEST(Front, CornerOfFindsTheCornerHoldingANode) {
+  const auto cube = test::box_surface(1, 1, 1);
+  const Front front(cube.surface);
+  for (FaceIndex f = 0; f < 6; ++f) {
+    for (int i = 0; i < 4; ++i)
+      EXPECT_EQ(front.corner_of(f, front.face(f).nodes[static_cast<std::size_t>(i)]), i);
+  }
+  // a node not on face 0
+  NodeId off;
+  for (std::size_t n = 0; n < 8; ++n)
+    if (front.corner_of(0, NodeId(n)) < 0) off = NodeId(n);
+  ASSERT_TRUE(off.is_valid());
+  EXPECT_EQ(front.corner_of(0, off), -1);
+}
+
+TEST(Front, FindEdgeFindsTheDirectedEdgeOnly) {
+  const auto cube = test::box_surface(1, 1, 1);
+  const Front front(cube.surface);
+  const stc::Quad q = front.face(2).nodes;
+  const FaceSide fs = front.find_edge(q[1], q[2]);
+  EXPECT_EQ(fs.face, 2);
+  EXPECT_EQ(fs.index, 1);
+  const FaceSide back = front.find_edge(q[2], q[1]);
+  EXPECT_NE(back.face, 2) << "the reverse edge is the neighbour's";
+  EXPECT_NE(back.face, kNoFace);
+  EXPECT_EQ(front.find_edge(q[0], q[2]).face, kNoFace) << "a diagonal is no edge";
+}
+
+TEST(Front, AddFaceAndRemoveFaceKeepIncidenceAndReuseSlots) {
+  const auto cube = test::box_surface(1, 1, 1);
+  Front front(cube.surface);
+  const stc::Quad q = front.face(3).nodes;
+  const FaceOwner owner = front.face(3).owner;
+  front.remove_face(3);
+  EXPECT_EQ(front.num_faces(), 5u);
+  EXPECT_FALSE(front.is_alive(3));
+  for (NodeId n : q) EXPECT_EQ(front.valence(n), 2u);
+  const FaceIndex f = front.add_face(q, owner, 4, {90.0F, 91.0F, 92.0F, 93.0F});
+  EXPECT_EQ(f, 3) << "the freed slot is reused";
+  EXPECT_EQ(front.face(f).depth, 4);
+  EXPECT_EQ(front.face(f).side_angle[1], 91.0F);
+  EXPECT_EQ(front.num_faces(), 6u);
+  for (NodeId n : q) {
+    EXPECT_EQ(front.valence(n), 3u);
+    const auto& list = front.faces_at(n);
+    EXPECT_EQ(std::count(list.begin(), list.end(), f), 1);
+  }
+  EXPECT_FALSE(front.check_invariants().has_value());
+  const FaceIndex g = front.add_face(q, owner, 0);
+  EXPECT_EQ(g, 6) << "a new slot when none is free";
+  const auto err = front.check_invariants();
+  ASSERT_TRUE(err.has_value());
+  EXPECT_NE(err->find("pinched"), std::string::npos) << *err;
+}
+
+TEST(Front, MergeMovesTheFacesOfTheGoneNode) {
+  const auto cube = test::box_surface(1, 1, 1);
+  Front front(cube.surface);
+  const NodeId a = front.new_node();
+  const stc::Quad q = front.face(0).nodes;
+  front.remove_face(0);
+  const FaceIndex f = front.add_face({q[0], q[1], q[2], a}, FaceOwner{}, 0);
+  EXPECT_EQ(front.valence(a), 1u);
+  front.merge_nodes(q[3], a);
+  EXPECT_EQ(front.face(f).nodes[3], q[3]);
+  EXPECT_EQ(front.valence(a), 0u);
+  EXPECT_EQ(front.valence(q[3]), 3u);
+  EXPECT_FALSE(front.check_invariants().has_value());
+}
+
 }  // namespace
 }  // namespace stcweave::weave

@@ -59,6 +59,11 @@ void Front::merge_nodes(NodeId keep, NodeId gone) {
       if (n == gone) n = keep;
   }
   auto& kept = incident_[keep.index()];
+  if (open_checkpoints_ > 0) {
+    journal_.push_back({IncidenceChange::Kind::Merge, static_cast<std::uint32_t>(keep.index()),
+                        static_cast<std::uint32_t>(gone.index()),
+                        static_cast<std::uint32_t>(kept.size()), kNoFace});
+  }
   kept.insert(kept.end(), moved.begin(), moved.end());
   moved.clear();
   moved.shrink_to_fit();
@@ -81,7 +86,13 @@ FaceIndex Front::add_face(const stc::Quad& nodes, FaceOwner owner, std::int32_t 
   face.depth = depth;
   face.side_angle = side_angle;
   face.alive = true;
-  for (NodeId n : nodes) incident_[n.index()].push_back(f);
+  for (NodeId n : nodes) {
+    incident_[n.index()].push_back(f);
+    if (open_checkpoints_ > 0) {
+      journal_.push_back(
+          {IncidenceChange::Kind::Push, static_cast<std::uint32_t>(n.index()), 0, 0, f});
+    }
+  }
   ++alive_;
   return f;
 }
@@ -91,11 +102,53 @@ void Front::remove_face(FaceIndex f) {
   for (NodeId n : face.nodes) {
     auto& list = incident_[n.index()];
     const auto it = std::find(list.begin(), list.end(), f);
-    if (it != list.end()) list.erase(it);
+    if (it == list.end()) continue;
+    if (open_checkpoints_ > 0) {
+      journal_.push_back({IncidenceChange::Kind::Erase, static_cast<std::uint32_t>(n.index()), 0,
+                          static_cast<std::uint32_t>(it - list.begin()), f});
+    }
+    list.erase(it);
   }
   face.alive = false;
   free_.push_back(f);
   --alive_;
+}
+
+Front::Checkpoint Front::checkpoint() {
+  ++open_checkpoints_;
+  return {faces_, free_, parent_, alive_, journal_.size()};
+}
+
+void Front::roll_back(Checkpoint&& c) {
+  while (journal_.size() > c.journal) {
+    const IncidenceChange e = journal_.back();
+    journal_.pop_back();
+    auto& list = incident_[e.node];
+    switch (e.kind) {
+      case IncidenceChange::Kind::Push:
+        list.pop_back();
+        break;
+      case IncidenceChange::Kind::Erase:
+        list.insert(list.begin() + e.pos, e.face);
+        break;
+      case IncidenceChange::Kind::Merge:
+        incident_[e.other].assign(list.begin() + e.pos, list.end());
+        list.resize(e.pos);
+        break;
+    }
+  }
+  incident_.resize(c.parent.size());
+  faces_ = std::move(c.faces);
+  free_ = std::move(c.free);
+  parent_ = std::move(c.parent);
+  alive_ = c.alive;
+  --open_checkpoints_;
+}
+
+void Front::release(Checkpoint&& c) {
+  --open_checkpoints_;
+  if (open_checkpoints_ == 0) journal_.clear();
+  c = Checkpoint{};
 }
 
 int Front::corner_of(FaceIndex f, NodeId v) const {

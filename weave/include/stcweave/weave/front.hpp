@@ -106,6 +106,23 @@ class Front {
   /// The face across side `side` of `f` and the index of the same edge in it.
   [[nodiscard]] FaceSide across(FaceIndex f, int side) const;
 
+  /// An undo point: `roll_back` returns the front to it exactly. The flat arrays (faces,
+  /// free slots, union-find) are copied; the incidence lists are journaled while a checkpoint
+  /// is open, so that taking one costs O(faces + nodes) copies and no allocation per node.
+  /// Checkpoints nest; each is rolled back or released, innermost first.
+  struct Checkpoint {
+    std::vector<FrontFace> faces;
+    std::vector<FaceIndex> free;
+    std::vector<NodeId> parent;
+    std::size_t alive = 0;
+    std::size_t journal = 0;
+  };
+  [[nodiscard]] Checkpoint checkpoint();
+  /// Undoes every change since `c` was taken. \pre `c` is the innermost open checkpoint.
+  void roll_back(Checkpoint&& c);
+  /// Keeps the changes since `c` and closes it. \pre `c` is the innermost open checkpoint.
+  void release(Checkpoint&& c);
+
   /// Checks that the front is a closed oriented 2-manifold quad surface: four distinct nodes
   /// per face, every directed edge once with its reverse present, incidence lists exact,
   /// every vertex link one cycle. Returns a description of the first violation.
@@ -118,6 +135,17 @@ class Front {
   mutable std::vector<NodeId> parent_;
   std::size_t num_input_nodes_ = 0;
   std::size_t alive_ = 0;
+  /// A change to an incidence list, journaled while a checkpoint is open.
+  struct IncidenceChange {
+    enum class Kind : std::uint8_t { Push, Erase, Merge };
+    Kind kind = Kind::Push;
+    std::uint32_t node = 0;    ///< the list changed (Merge: the kept node)
+    std::uint32_t other = 0;   ///< Merge: the gone node
+    std::uint32_t pos = 0;     ///< Erase: the position; Merge: the kept list's former size
+    FaceIndex face = kNoFace;  ///< Erase: the face erased
+  };
+  std::vector<IncidenceChange> journal_;
+  int open_checkpoints_ = 0;
 };
 
 }  // namespace stcweave::weave

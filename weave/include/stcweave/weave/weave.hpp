@@ -13,6 +13,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -95,6 +96,8 @@ struct ExtendedParameters {
 void check_parameters(const ExtendedParameters& parameters);
 
 struct TraceEvent;
+struct Selection;
+class WeaveObserver;
 
 struct WeaveOptions {
   RuleSet rules = RuleSet::Reliable;
@@ -116,6 +119,13 @@ struct WeaveOptions {
   /// Called every `progress_every` rules when set.
   std::function<void(const WeaveProgress&)> progress;
   std::size_t progress_every = 20000;
+  /// When set, replaces the loop selection of `rules` (see stcweave/weave/select.hpp: a list
+  /// of filters; `reliable_selection()`, `extended_selection()` or one of your own). `rules`
+  /// still decides the rest (geometric preconditions and intermediate rules with `extended`).
+  std::shared_ptr<const Selection> selection;
+  /// When set, watches the weave (selections, rules, failed shrinks) besides the trace; see
+  /// stcweave/weave/kernel.hpp. Not owned; must outlive the call.
+  WeaveObserver* observer = nullptr;
 };
 
 /// One neighbour of a hex face in the woven STC: another hex, or an input quad (a boundary

@@ -1,0 +1,127 @@
+#pragma once
+/// \file
+/// Loop selection as data (seed sect. 4 and 7, Fig. 15).
+///
+/// Every (loop, side) of the front is a candidate with its properties (`TraceCandidate`).
+/// A `Selection` ranks them: a stable order first, loops that cross themselves last, then its
+/// filters in turn, each keeping the candidates that pass. A filter is a value: a name, a
+/// predicate (or a cost to minimise), whether it may be relaxed when it would leave none,
+/// and, for a deciding filter, the reason it gives. `reliable_selection()` and
+/// `extended_selection()` are the two lists of the CLI; a library user builds a third and
+/// passes it as `WeaveOptions::selection`. Variants without a stability promise live in
+/// `weave::experimental`.
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "stcweave/weave/kernel.hpp"
+#include "stcweave/weave/rules.hpp"
+
+namespace stcweave::weave {
+
+/// One filter of Fig. 15.
+struct Filter {
+  enum class Kind {
+    /// Keeps the candidates for which `keep` holds.
+    Keep,
+    /// Keeps the candidates whose `cost` is at most the least cost plus `slack`.
+    Least,
+    /// When some candidate passes `keep`, those are the choice and the later filters are
+    /// skipped (the parallel rules, which "directly define the loop to shrink").
+    Decide,
+  };
+  std::string name;
+  Kind kind = Kind::Keep;
+  std::function<bool(const TraceCandidate&)> keep;    ///< Keep, Decide
+  std::function<double(const TraceCandidate&)> cost;  ///< Least
+  double slack = 1e-12;                               ///< Least
+  /// When it would leave no candidate it is skipped for this selection (traced "relaxed").
+  bool may_relax = false;
+  /// Decide: the reason traced, given the candidates it kept.
+  std::function<std::string(const std::vector<TraceCandidate>&)> reason;
+};
+
+/// A rule set's loop selection: an order, then filters.
+struct Selection {
+  std::string name;
+  /// The candidates need the extended properties (faces collapsed, depth, sharp and
+  /// non-convex edges, parallel loops), computed from the carried angles.
+  bool geometric = false;
+  /// The order before filtering (stable; ties keep the enumeration order).
+  std::function<bool(const TraceCandidate&, const TraceCandidate&)> order;
+  std::vector<Filter> filters;
+  /// What decides among the candidates left ("weight", "topological").
+  std::string last = "weight";
+  /// The reason given when `last` decides.
+  std::string last_reason;
+  /// Trace the filters (`name:before->after`) and `last:N`, and name them in the reason.
+  bool list_filters = false;
+};
+
+/// Reliable Whisker Weaving: the smallest topological weight (nodes strictly on that side
+/// plus nodes on the strip). \cite seed sect. 2.2.
+[[nodiscard]] Selection reliable_selection();
+
+/// The seed's Fig. 15 with the switches of `parameters`: parallel crossing (decides), then
+/// the non-convex (may relax), depth, first convex (may relax) and second convex filters;
+/// among those left, the fewest faces collapsed, then the smaller weight.
+/// \cite seed sect. 4.1-4.5, 7.
+[[nodiscard]] Selection extended_selection(const ExtendedParameters& parameters);
+
+/// The selection `options` asks for: `options.selection` when set, else the rule set's.
+[[nodiscard]] Selection selection_for(const WeaveOptions& options);
+
+// The filters of Fig. 15, each a named value (`extended_selection` lists them in order).
+[[nodiscard]] Filter parallel_crossing_filter();  ///< sect. 4.5: runs along another loop
+[[nodiscard]] Filter nonconvex_filter();          ///< sect. 4.4: no non-convex edge that side
+[[nodiscard]] Filter depth_filter();              ///< sect. 4.1: least depth
+[[nodiscard]] Filter first_convex_filter();       ///< sect. 4.2: crosses a sharp edge
+[[nodiscard]] Filter second_convex_filter();      ///< sect. 4.3: highest side elimination weight
+
+/// The outcome of ranking the candidates of one selection.
+struct Ranking {
+  /// Every candidate, in the order to try them: those the filters kept first.
+  std::vector<TraceCandidate> order;
+  /// The filters applied, as traced ("depth:4->2", "nonconvex:3->relaxed", ...).
+  std::vector<std::string> filters;
+  std::string reason;      ///< why the first is chosen
+  std::string decided_by;  ///< the filter after which one candidate was left, or `last`
+};
+/// Ranks `candidates` by `selection`. Pure: depends only on its arguments.
+[[nodiscard]] Ranking rank(const Selection& selection, std::vector<TraceCandidate> candidates);
+
+/// The candidates of one selection: two per loop of `loops`, side A then side B, with the
+/// reliable weights and, for a geometric selection, the extended properties (and
+/// `parallel_to` when `parameters.parallel_crossing`).
+[[nodiscard]] std::vector<TraceCandidate> loop_candidates(
+    const Front& front, const FrontLoops& loops, const FrontComponents& components, bool geometric,
+    const ExtendedParameters& parameters, Marks& nodes, Marks& faces, Marks& faces2);
+
+/// The reliable weights of shrinking `strip` to side A and to side B (`faces` receives the
+/// strip faces under a fresh stamp). \cite seed sect. 2.2.
+[[nodiscard]] std::array<TraceCandidate, 2> weigh(const Front& front, const Strip& strip,
+                                                  const FrontComponents& components, Marks& nodes,
+                                                  Marks& faces);
+
+/// `weigh` plus the properties of the extended filters for both sides.
+[[nodiscard]] std::array<TraceCandidate, 2> extended_properties(
+    const Front& front, const Strip& strip, const FrontComponents& components,
+    const ExtendedParameters& parameters, Marks& nodes, Marks& faces, Marks& faces2);
+
+/// The loop that `strip` runs along on side `side` across sharp convex edges only, of the
+/// same length (parallel crossing, seed sect. 4.5), or -1.
+[[nodiscard]] std::int32_t parallel_loop(const Front& front, const Strip& strip, stc::LoopSide side,
+                                         const FrontLoops& loops,
+                                         const ExtendedParameters& parameters);
+
+namespace experimental {
+/// A variant of the depth rule: keeps the candidates whose depth is at most one above the
+/// least (a softer "closer to the boundary first"). No stability promise.
+[[nodiscard]] Filter depth_within_one_filter();
+/// `extended_selection` with the depth filter replaced by `depth_within_one_filter`.
+[[nodiscard]] Selection extended_soft_depth_selection(const ExtendedParameters& parameters);
+}  // namespace experimental
+
+}  // namespace stcweave::weave

@@ -1,0 +1,181 @@
+/// The filters of the seed's Fig. 15 as values, the two rule sets as lists of them, and the
+/// one ranking function that runs any list.
+
+#include <algorithm>
+
+#include "stcweave/weave/select.hpp"
+
+namespace stcweave::weave {
+
+Filter parallel_crossing_filter() {
+  Filter f;
+  f.name = "parallel_crossing";
+  f.kind = Filter::Kind::Decide;
+  f.keep = [](const TraceCandidate& c) { return c.parallel_to >= 0; };
+  f.reason = [](const std::vector<TraceCandidate>& kept) {
+    return "parallel crossing: runs along loop " + std::to_string(kept.front().parallel_to) +
+           " across sharp convex edges; fewest faces collapsed";
+  };
+  return f;
+}
+
+Filter nonconvex_filter() {
+  Filter f;
+  f.name = "nonconvex";
+  f.keep = [](const TraceCandidate& c) { return c.nonconvex_on_side == 0; };
+  f.may_relax = true;  // the seed stops here ("not supported"); we go on
+  return f;
+}
+
+Filter depth_filter() {
+  Filter f;
+  f.name = "depth";
+  f.kind = Filter::Kind::Least;
+  f.cost = [](const TraceCandidate& c) { return static_cast<double>(c.depth); };
+  return f;
+}
+
+Filter first_convex_filter() {
+  Filter f;
+  f.name = "first_convex";
+  f.keep = [](const TraceCandidate& c) { return c.crossed_sharp > 0; };
+  f.may_relax = true;
+  return f;
+}
+
+Filter second_convex_filter() {
+  Filter f;
+  f.name = "second_convex";
+  f.kind = Filter::Kind::Least;
+  // the highest side elimination weight: sharp convex side edges / loop length
+  f.cost = [](const TraceCandidate& c) {
+    return -(static_cast<double>(c.side_sharp) /
+             static_cast<double>(std::max<std::size_t>(1, c.length)));
+  };
+  return f;
+}
+
+Selection reliable_selection() {
+  Selection s;
+  s.name = "reliable";
+  s.order = [](const TraceCandidate& p, const TraceCandidate& q) { return p.weight < q.weight; };
+  s.last = "weight";
+  s.last_reason = "smallest weight (strictly on side + on strip)";
+  return s;
+}
+
+Selection extended_selection(const ExtendedParameters& p) {
+  Selection s;
+  s.name = "extended";
+  s.geometric = true;
+  s.order = [](const TraceCandidate& a, const TraceCandidate& b) {
+    if (a.faces_collapsed != b.faces_collapsed) return a.faces_collapsed < b.faces_collapsed;
+    return a.weight < b.weight;
+  };
+  if (p.parallel_crossing) s.filters.push_back(parallel_crossing_filter());
+  if (p.nonconvex_filter) s.filters.push_back(nonconvex_filter());
+  if (p.depth_filter) s.filters.push_back(depth_filter());
+  if (p.first_convex_filter) s.filters.push_back(first_convex_filter());
+  if (p.second_convex_filter) s.filters.push_back(second_convex_filter());
+  s.last = "topological";
+  s.last_reason = "fewest faces collapsed";
+  s.list_filters = true;
+  return s;
+}
+
+Selection selection_for(const WeaveOptions& options) {
+  if (options.selection) return *options.selection;
+  return options.rules == RuleSet::Extended ? extended_selection(options.extended)
+                                            : reliable_selection();
+}
+
+Ranking rank(const Selection& selection, std::vector<TraceCandidate> all) {
+  Ranking out;
+  if (selection.order) std::stable_sort(all.begin(), all.end(), selection.order);
+  // Loops that cross themselves go last (unless there is nothing else).
+  std::vector<TraceCandidate> set;
+  for (const auto& c : all)
+    if (!c.self_intersecting) set.push_back(c);
+  if (set.empty()) set = all;
+  const auto note = [&](const std::string& entry) {
+    if (selection.list_filters) out.filters.push_back(entry);
+  };
+  bool decided = false;
+  for (const Filter& filter : selection.filters) {
+    const std::size_t before = set.size();
+    std::vector<TraceCandidate> kept;
+    if (filter.kind == Filter::Kind::Least) {
+      double least = 0.0;
+      bool first = true;
+      for (const auto& c : set) {
+        const double x = filter.cost(c);
+        if (first || x < least) least = x;
+        first = false;
+      }
+      for (const auto& c : set)
+        if (filter.cost(c) <= least + filter.slack) kept.push_back(c);
+    } else {
+      for (const auto& c : set)
+        if (filter.keep(c)) kept.push_back(c);
+    }
+    if (filter.kind == Filter::Kind::Decide) {
+      note(filter.name + ":" + std::to_string(kept.size()));
+      if (!kept.empty()) {
+        set = std::move(kept);
+        out.reason = filter.reason ? filter.reason(set) : filter.name;
+        out.decided_by = filter.name;
+        decided = true;
+        break;
+      }
+      continue;
+    }
+    if (kept.empty() && filter.may_relax) {
+      note(filter.name + ":" + std::to_string(before) + "->relaxed");
+      continue;
+    }
+    if (!kept.empty()) set = std::move(kept);
+    note(filter.name + ":" + std::to_string(before) + "->" + std::to_string(set.size()));
+    if (set.size() == 1 && out.decided_by.empty()) out.decided_by = filter.name;
+  }
+  if (!decided) {
+    note(selection.last + ":" + std::to_string(set.size()));
+    if (out.decided_by.empty()) out.decided_by = selection.last;
+    if (selection.list_filters) {
+      std::string joined;
+      for (const auto& f : out.filters) joined += (joined.empty() ? "" : ", ") + f;
+      out.reason = "filters " + joined + "; " + selection.last_reason;
+    } else {
+      out.reason = selection.last_reason;
+    }
+  }
+  // The chosen set first (already in order), then every other candidate.
+  out.order = set;
+  for (const auto& c : all) {
+    const bool in = std::any_of(set.begin(), set.end(), [&](const TraceCandidate& x) {
+      return x.loop == c.loop && x.side == c.side;
+    });
+    if (!in) out.order.push_back(c);
+  }
+  return out;
+}
+
+namespace experimental {
+
+Filter depth_within_one_filter() {
+  Filter f = depth_filter();
+  f.name = "depth_within_one";
+  f.slack = 1.0;
+  return f;
+}
+
+Selection extended_soft_depth_selection(const ExtendedParameters& parameters) {
+  Selection s = extended_selection(parameters);
+  s.name = "extended-soft-depth";
+  for (Filter& f : s.filters)
+    if (f.name == "depth") f = depth_within_one_filter();
+  return s;
+}
+
+}  // namespace experimental
+
+}  // namespace stcweave::weave

@@ -1,0 +1,260 @@
+/// The properties of each (loop, side) candidate that the selection filters read: the
+/// reliable weights (seed sect. 2.2) and, for the extended rule set, faces collapsed, depth
+/// (sect. 4.1), sharp edges crossed (4.2), side elimination weight (4.3), non-convex edges on
+/// that side (4.4) and the loop it runs parallel to (4.5).
+
+#include <algorithm>
+
+#include "stcweave/weave/select.hpp"
+
+namespace stcweave::weave {
+
+FrontComponents front_components(const Front& front, Marks& marks) {
+  FrontComponents out;
+  out.component_of.assign(front.num_nodes(), 0);
+  const std::uint32_t mark = marks.fresh(front.num_nodes());
+  std::vector<NodeId> stack;
+  for (std::size_t v = 0; v < front.num_nodes(); ++v) {
+    const NodeId start(v);
+    if (front.valence(start) == 0 || marks.is(v, mark)) continue;
+    const std::size_t comp = out.size.size();
+    out.size.push_back(0);
+    marks.set(v, mark);
+    stack.push_back(start);
+    while (!stack.empty()) {
+      const NodeId n = stack.back();
+      stack.pop_back();
+      out.component_of[n.index()] = comp;
+      ++out.size[comp];
+      for (FaceIndex f : front.faces_at(n)) {
+        for (NodeId m : front.face(f).nodes) {
+          if (marks.is(m.index(), mark)) continue;
+          marks.set(m.index(), mark);
+          stack.push_back(m);
+        }
+      }
+    }
+  }
+  return out;
+}
+
+std::array<TraceCandidate, 2> weigh(const Front& front, const Strip& strip,
+                                    const FrontComponents& components, Marks& nodes, Marks& faces) {
+  std::array<TraceCandidate, 2> c;
+  c[0].side = 0;
+  c[1].side = 1;
+  c[0].length = c[1].length = strip.size();
+  const std::uint32_t strip_stamp = faces.fresh(front.face_capacity());
+  bool self_intersecting = false;
+  for (const stc::StripStep& p : strip) {
+    const auto f = static_cast<std::size_t>(face_of(p));
+    if (faces.is(f, strip_stamp)) self_intersecting = true;
+    faces.set(f, strip_stamp);
+  }
+  c[0].self_intersecting = c[1].self_intersecting = self_intersecting;
+  // Stamps: `on` for strip nodes, `side[0]`/`side[1]` for nodes reached from either side.
+  const std::uint32_t on = nodes.fresh(front.num_nodes());
+  const std::array<std::uint32_t, 2> side{nodes.fresh(front.num_nodes()),
+                                          nodes.fresh(front.num_nodes())};
+  std::array<std::vector<NodeId>, 2> stack;
+  std::size_t on_strip = 0;
+  for (const stc::StripStep& p : strip) {
+    const stc::Quad& n = front.face(face_of(p)).nodes;
+    for (NodeId m : n) {
+      if (nodes.is(m.index(), on)) continue;
+      nodes.set(m.index(), on);
+      ++on_strip;
+    }
+    // side A nodes: n[i], n[i+3]; side B: n[i+1], n[i+2]
+    stack[0].push_back(quad_at(n, p.entry));
+    stack[0].push_back(quad_at(n, p.entry + 3));
+    stack[1].push_back(quad_at(n, p.entry + 1));
+    stack[1].push_back(quad_at(n, p.entry + 2));
+  }
+  c[0].on_strip = c[1].on_strip = on_strip;
+  // Flood both sides through non-strip faces, one node at a time each, until one side is
+  // exhausted: that side is then complete, and on a loop that separates its component the
+  // other side is the rest of the component. If the floods meet, the loop does not separate
+  // (it crosses itself): count each side by a full flood.
+  std::array<std::size_t, 2> count{0, 0};
+  bool met = false;
+  const auto expand = [&](int d) {
+    const auto di = static_cast<std::size_t>(d);
+    const NodeId n = stack[di].back();
+    stack[di].pop_back();
+    for (FaceIndex f : front.faces_at(n)) {
+      if (faces.is(static_cast<std::size_t>(f), strip_stamp)) continue;
+      for (NodeId m : front.face(f).nodes) {
+        const std::uint32_t mark = nodes.get(m.index());
+        if (mark == on || mark == side[di]) continue;
+        if (mark == side[1 - di]) {
+          met = true;
+          continue;
+        }
+        nodes.set(m.index(), side[di]);
+        ++count[di];
+        stack[di].push_back(m);
+      }
+    }
+  };
+  while (!met && !stack[0].empty() && !stack[1].empty()) {
+    expand(0);
+    if (!met && !stack[1].empty()) expand(1);
+  }
+  if (!met) {
+    const auto done = static_cast<std::size_t>(stack[0].empty() ? 0 : 1);
+    const std::size_t total =
+        components
+            .size[components.component_of[front.face(face_of(strip.front())).nodes[0].index()]];
+    c[done].strictly_on_side = count[done];
+    c[1 - done].strictly_on_side = total - on_strip - count[done];
+  } else {
+    for (int d = 0; d < 2; ++d) {
+      const std::uint32_t mark = nodes.fresh(front.num_nodes());
+      for (const stc::StripStep& p : strip)
+        for (NodeId m : front.face(face_of(p)).nodes) nodes.set(m.index(), mark);
+      std::vector<NodeId> st;
+      for (const stc::StripStep& p : strip) {
+        const stc::Quad& n = front.face(face_of(p)).nodes;
+        st.push_back(quad_at(n, d == 0 ? p.entry : p.entry + 1));
+        st.push_back(quad_at(n, d == 0 ? p.entry + 3 : p.entry + 2));
+      }
+      std::size_t strict = 0;
+      while (!st.empty()) {
+        const NodeId n = st.back();
+        st.pop_back();
+        for (FaceIndex f : front.faces_at(n)) {
+          if (faces.is(static_cast<std::size_t>(f), strip_stamp)) continue;
+          for (NodeId m : front.face(f).nodes) {
+            if (nodes.is(m.index(), mark)) continue;
+            nodes.set(m.index(), mark);
+            ++strict;
+            st.push_back(m);
+          }
+        }
+      }
+      c[static_cast<std::size_t>(d)].strictly_on_side = strict;
+    }
+  }
+  for (auto& x : c) x.weight = x.strictly_on_side + x.on_strip;
+  return c;
+}
+
+std::array<TraceCandidate, 2> extended_properties(const Front& front, const Strip& strip,
+                                                  const FrontComponents& components,
+                                                  const ExtendedParameters& par, Marks& nodes,
+                                                  Marks& faces, Marks& faces2) {
+  std::array<TraceCandidate, 2> c = weigh(front, strip, components, nodes, faces);
+  const FaceSet strip_faces = mark_strip_faces(faces, front, strip);
+  std::vector<FaceIndex> strip_face_list;
+  strip_face_list.reserve(strip.size());
+  for (const stc::StripStep& p : strip) strip_face_list.push_back(face_of(p));
+  std::sort(strip_face_list.begin(), strip_face_list.end());
+  const auto strip_face_count = static_cast<std::size_t>(
+      std::unique(strip_face_list.begin(), strip_face_list.end()) - strip_face_list.begin());
+  std::size_t crossed = 0;
+  std::array<std::size_t, 2> side_sharp{0, 0};
+  std::array<std::size_t, 2> nonconvex{0, 0};
+  for (const stc::StripStep& p : strip) {
+    if (edge_angle(front, face_of(p), p.entry) <= par.little_sharp) ++crossed;
+    for (std::size_t d = 0; d < 2; ++d) {
+      const int side = d == 0 ? (p.entry + 3) % 4 : (p.entry + 1) % 4;
+      const double a = edge_angle(front, face_of(p), side);
+      if (a <= par.sharp) ++side_sharp[d];
+      if (a > par.flat) ++nonconvex[d];
+    }
+  }
+  for (int d = 0; d < 2; ++d) {
+    const auto di = static_cast<std::size_t>(d);
+    // Flood side d from its strip nodes through non-strip faces: faces on that side, their
+    // depths and their non-convex edges (each edge counted once).
+    const std::uint32_t node_seen = nodes.fresh(front.num_nodes());
+    for (const stc::StripStep& p : strip)
+      for (NodeId m : front.face(face_of(p)).nodes) nodes.set(m.index(), node_seen);
+    std::vector<NodeId> stack;
+    for (const stc::StripStep& p : strip) {
+      const stc::Quad& n = front.face(face_of(p)).nodes;
+      stack.push_back(quad_at(n, d == 0 ? p.entry : p.entry + 1));
+      stack.push_back(quad_at(n, d == 0 ? p.entry + 3 : p.entry + 2));
+    }
+    std::vector<FaceIndex> side_faces;
+    const std::uint32_t face_seen = faces2.fresh(front.face_capacity());
+    while (!stack.empty()) {
+      const NodeId n = stack.back();
+      stack.pop_back();
+      for (FaceIndex f : front.faces_at(n)) {
+        if (strip_faces.contains(f) || faces2.is(static_cast<std::size_t>(f), face_seen)) continue;
+        faces2.set(static_cast<std::size_t>(f), face_seen);
+        side_faces.push_back(f);
+        for (NodeId m : front.face(f).nodes) {
+          if (nodes.is(m.index(), node_seen)) continue;
+          nodes.set(m.index(), node_seen);
+          stack.push_back(m);
+        }
+      }
+    }
+    std::int32_t depth = 0;
+    for (FaceIndex f : side_faces) {
+      const std::int32_t fd = front.face(f).depth;
+      if (fd > 0 && (depth == 0 || fd < depth)) depth = fd;
+      for (int k = 0; k < 4; ++k) {
+        const FaceSide g = front.across(f, k);
+        const bool once = g.face == kNoFace || strip_faces.contains(g.face) || f < g.face;
+        if (once && edge_angle(front, f, k) > par.flat) ++nonconvex[di];
+      }
+    }
+    TraceCandidate& x = c[di];
+    x.faces_collapsed = side_faces.size() + strip_face_count;
+    x.depth = depth;
+    x.crossed_sharp = crossed;
+    x.side_sharp = side_sharp[di];
+    x.nonconvex_on_side = nonconvex[di];
+  }
+  return c;
+}
+
+std::int32_t parallel_loop(const Front& front, const Strip& strip, stc::LoopSide side,
+                           const FrontLoops& loops, const ExtendedParameters& parameters) {
+  std::int32_t other = -1;
+  const std::int32_t self = loops.loop_of[static_cast<std::size_t>(face_of(strip.front()))]
+                                         [static_cast<std::size_t>(strip.front().direction())];
+  for (const stc::StripStep& p : strip) {
+    const int s = side == stc::LoopSide::Left ? (p.entry + 3) % 4 : (p.entry + 1) % 4;
+    if (edge_angle(front, face_of(p), s) > parameters.sharp) return -1;
+    const FaceSide g = front.across(face_of(p), s);
+    if (g.face == kNoFace) return -1;
+    // the loop that has this edge as a side edge enters g perpendicularly to it
+    const std::int32_t l =
+        loops
+            .loop_of[static_cast<std::size_t>(g.face)][static_cast<std::size_t>((g.index + 1) % 2)];
+    if (l < 0 || l == self || (other >= 0 && l != other)) return -1;
+    other = l;
+  }
+  if (other < 0 || loops.strips[static_cast<std::size_t>(other)].size() != strip.size()) return -1;
+  return other;
+}
+
+std::vector<TraceCandidate> loop_candidates(const Front& front, const FrontLoops& loops,
+                                            const FrontComponents& components, bool geometric,
+                                            const ExtendedParameters& parameters, Marks& nodes,
+                                            Marks& faces, Marks& faces2) {
+  std::vector<TraceCandidate> out;
+  out.reserve(loops.strips.size() * 2);
+  for (std::size_t l = 0; l < loops.strips.size(); ++l) {
+    const Strip& strip = loops.strips[l];
+    const auto pair =
+        geometric ? extended_properties(front, strip, components, parameters, nodes, faces, faces2)
+                  : weigh(front, strip, components, nodes, faces);
+    for (TraceCandidate c : pair) {
+      c.loop = static_cast<std::int32_t>(l);
+      if (geometric && parameters.parallel_crossing && !c.self_intersecting) {
+        c.parallel_to =
+            parallel_loop(front, strip, static_cast<stc::LoopSide>(c.side), loops, parameters);
+      }
+      out.push_back(c);
+    }
+  }
+  return out;
+}
+
+}  // namespace stcweave::weave

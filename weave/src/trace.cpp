@@ -1,0 +1,71 @@
+/// The trace as an observer of the driver: each call becomes one `TraceEvent`, handed to
+/// `WeaveOptions::on_trace` as it happens and kept when `WeaveOptions::trace` is set.
+
+#include "trace.hpp"
+
+namespace stcweave::weave {
+
+void TraceRecorder::record(TraceEvent e) {
+  if (options_.on_trace) options_.on_trace(e);
+  if (options_.trace) events_.push_back(std::move(e));
+}
+
+void TraceRecorder::on_selection(std::size_t step, std::int32_t shrink,
+                                 std::span<const TraceCandidate> candidates, std::size_t chosen,
+                                 const std::string& reason, std::span<const std::string> filters,
+                                 const std::string& decided_by) {
+  TraceEvent e;
+  e.kind = TraceEvent::Kind::Selection;
+  e.step = step;
+  e.candidates.assign(candidates.begin(), candidates.end());
+  e.chosen = static_cast<std::int32_t>(chosen);
+  e.reason = reason;
+  e.filters.assign(filters.begin(), filters.end());
+  e.decided_by = decided_by;
+  e.shrink = shrink;
+  record(std::move(e));
+}
+
+void TraceRecorder::on_rule(std::size_t step, std::int32_t shrink, const char* rule, NodeId node,
+                            std::span<const FaceOwner> faces, HexId hex) {
+  TraceEvent e;
+  e.kind = TraceEvent::Kind::Rule;
+  e.step = step;
+  e.rule = rule;
+  e.node = node;
+  e.faces.reserve(faces.size());
+  for (const FaceOwner& f : faces) e.faces.push_back(f.str());
+  e.hex = hex;
+  e.shrink = shrink;
+  record(std::move(e));
+}
+
+void TraceRecorder::on_shrink_failed(std::size_t step, std::int32_t shrink,
+                                     const std::string& reason) {
+  TraceEvent e;
+  e.kind = TraceEvent::Kind::ShrinkFailed;
+  e.step = step;
+  e.reason = reason;
+  e.shrink = shrink;
+  record(std::move(e));
+}
+
+void ObserverList::on_selection(std::size_t step, std::int32_t shrink,
+                                std::span<const TraceCandidate> candidates, std::size_t chosen,
+                                const std::string& reason, std::span<const std::string> filters,
+                                const std::string& decided_by) {
+  for (WeaveObserver* o : observers_)
+    o->on_selection(step, shrink, candidates, chosen, reason, filters, decided_by);
+}
+
+void ObserverList::on_rule(std::size_t step, std::int32_t shrink, const char* rule, NodeId node,
+                           std::span<const FaceOwner> faces, HexId hex) {
+  for (WeaveObserver* o : observers_) o->on_rule(step, shrink, rule, node, faces, hex);
+}
+
+void ObserverList::on_shrink_failed(std::size_t step, std::int32_t shrink,
+                                    const std::string& reason) {
+  for (WeaveObserver* o : observers_) o->on_shrink_failed(step, shrink, reason);
+}
+
+}  // namespace stcweave::weave
