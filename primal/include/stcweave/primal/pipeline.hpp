@@ -13,6 +13,7 @@
 #include "stcweave/primal/position.hpp"
 #include "stcweave/primal/quality.hpp"
 #include "stcweave/primal/recover.hpp"
+#include "stcweave/primal/self_crossing.hpp"
 #include "stcweave/stc/validate.hpp"
 #include "stcweave/weave/weave.hpp"
 
@@ -36,6 +37,12 @@ struct MeshOptions {
   /// inverted corners. Off by default: measured on the woven shared corpus it gives the same
   /// result as the harmonic start or a worse one (docs/geometry.md).
   bool layer_start = false;
+  /// Mesh surfaces whose loops cross themselves by attaching hexes until they do not
+  /// (`weave_self_crossing`, docs/self-intersecting-loops.md); false refuses them as the seed
+  /// does.
+  bool self_crossing_moves = true;
+  /// Bounds of that search, and where the front goes when it gives up.
+  SelfCrossingOptions self_crossing;
   /// Settings of the positioning stage; `num_fixed` is set by the pipeline (the input
   /// surface's nodes are fixed).
   PositionOptions position;
@@ -68,6 +75,9 @@ struct MeshResult {
   stc::ValidationReport validation;
   HarmonicReport harmonic;
   PositionReport position;  ///< empty when `MeshOptions::untangle` is false
+  /// The moves, attached hexes and join of a surface with self-intersecting loops (`used` is
+  /// false for any other surface).
+  SelfCrossingReport self_crossing;
   QualitySummary quality;
   StageSeconds seconds;
 };
@@ -75,7 +85,8 @@ struct MeshResult {
 /// Meshes the quad surface of `file` (its quads, or the boundary of its hexes).
 /// \throw TopologyError for a surface that cannot be woven (see `require_weavable`).
 /// \throw Unsupported for a component of genus > 0 or nested shells.
-/// \throw WeaveError when the weave is blocked.
+/// \throw WeaveError when the weave is blocked, or the search for front moves of a surface
+///        with self-intersecting loops gives up.
 /// \throw InternalError when the woven complex breaks an invariant (unless keep_invalid).
 MeshResult mesh_file(const MeshFile& file, const MeshOptions& options = {});
 
