@@ -212,11 +212,8 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
     report.weave_failure = e.what();
     report.weave_seconds = seconds_since(t);
     if (auto r = fill()) return std::move(*r);
-    throw WeaveError(std::string("self-intersecting loops: after " +
-                                 std::to_string(moves.moves.size()) +
-                                 " attached hexes made the loops simple, the weave of the front "
-                                 "blocked: ") +
-                     e.what());
+    give_up(moves, "the loops are simple after " + std::to_string(moves.moves.size()) +
+                       " attached hexes, but the weave of the front blocked (" + e.what() + ")");
   }
   report.woven_hexes = woven.complex.hexes.size();
   report.weave_seconds = seconds_since(t);

@@ -6,6 +6,7 @@
 #include <limits>
 #include <tuple>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "stcweave/stc/errors.hpp"
 
@@ -210,7 +211,7 @@ bool hex_face_has(int face, int local) {
 /// Maps `pattern` onto the front with its hex face `pattern.chosen[seed]` on slot `f`
 /// rotated by `rot`, then checks every precondition. False when any fails.
 bool try_candidate(const State& s, const Pattern& pattern, std::size_t seed, Slot f, int rot,
-                   Candidate& c) {
+                   int min_valence, Candidate& c) {
   c.pattern = &pattern;
   c.map.fill(NodeId::invalid());
   c.slot_of.fill(kNone);
@@ -312,7 +313,7 @@ bool try_candidate(const State& s, const Pattern& pattern, std::size_t seed, Slo
     const auto d = static_cast<int>(walk_fan(s, v, [](Slot, int) {}));
     if (j == 3) {
       if (d != 3) return false;
-    } else if (d <= j || d + 3 - 2 * j < 3) {
+    } else if (d <= j || d + 3 - 2 * j < min_valence) {
       return false;
     }
   }
@@ -341,6 +342,29 @@ bool try_candidate(const State& s, const Pattern& pattern, std::size_t seed, Slo
     if (all && (front_face_on(s, q) || hex_face_on(s, q))) return false;
   }
   return true;
+}
+
+/// A signature of the front (its faces as sorted node sets, sorted), to skip fronts the
+/// search has already seen.
+std::uint64_t signature(const State& s) {
+  std::vector<std::array<std::int32_t, 4>> keys;
+  keys.reserve(s.live);
+  for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    if (s.alive[f] == 0U) continue;
+    std::array<std::int32_t, 4> k{s.faces[f][0].value(), s.faces[f][1].value(),
+                                  s.faces[f][2].value(), s.faces[f][3].value()};
+    std::sort(k.begin(), k.end());
+    keys.push_back(k);
+  }
+  std::sort(keys.begin(), keys.end());
+  std::uint64_t h = 1469598103934665603ULL;  // FNV-1a over the ids
+  for (const auto& k : keys) {
+    for (const std::int32_t v : k) {
+      h ^= static_cast<std::uint32_t>(v);
+      h *= 1099511628211ULL;
+    }
+  }
+  return h;
 }
 
 /// Applies a checked candidate: the hex, its new nodes, the new front faces and their sides.
@@ -463,7 +487,7 @@ class Search {
         for (std::size_t seed = 0; seed < p.chosen.size(); ++seed) {
           for (int rot = 0; rot < 4; ++rot) {
             Candidate c;
-            if (!try_candidate(s, p, seed, f, rot, c)) continue;
+            if (!try_candidate(s, p, seed, f, rot, 3, c)) continue;
             std::vector<Slot> key;
             for (const int t : p.chosen) key.push_back(c.slot_of[static_cast<std::size_t>(t)]);
             std::sort(key.begin(), key.end());
@@ -473,6 +497,7 @@ class Search {
             if (s.live + 6 - 2 * p.chosen.size() > max_faces_) continue;
             State next = s;
             apply(next, c);
+            if (!seen_fronts_.insert(signature(next)).second) continue;
             evaluate(next, goal_);
             next.moves.back().self_crossing_quads = self_crossings(next);
             ++tried;
@@ -501,6 +526,7 @@ class Search {
   std::size_t max_faces_;
   Goal goal_;
   std::size_t evaluations_ = 0;
+  std::unordered_set<std::uint64_t> seen_fronts_;
 };
 
 State initial_state(const QuadSurface& surface) {
@@ -595,8 +621,9 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
     const bool small = current.live <= options.small_front;
     const std::size_t width = std::max<std::size_t>(
         1, small ? std::max(options.beam_width, options.small_beam_width) : options.beam_width);
-    const std::size_t depth_bound =
-        small ? std::max(options.beam_depth, options.small_beam_depth) : options.beam_depth;
+    const std::size_t depth_bound = std::min(
+        small ? std::max(options.beam_depth, options.small_beam_depth) : options.beam_depth,
+        options.max_moves - current.moves.size());
     std::vector<State> level = search.successors(current, width);
     if (!level.empty() && level.front().score < current.score) {
       current = std::move(level.front());

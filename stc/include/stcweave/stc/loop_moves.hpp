@@ -57,8 +57,8 @@ struct LoopMoveOptions {
   /// Fronts of at most this many faces get the deeper, wider look-ahead below (they are
   /// cheap to evaluate and the moves they need are longer).
   std::size_t small_front = 48;
-  std::size_t small_beam_depth = 6;
-  std::size_t small_beam_width = 24;
+  std::size_t small_beam_depth = 10;
+  std::size_t small_beam_width = 48;
 };
 
 /// One move of the search, as applied.
