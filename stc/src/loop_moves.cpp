@@ -482,7 +482,7 @@ class Search {
     std::vector<std::vector<Slot>> seen;
     std::size_t tried = 0;
     for (const Slot f : hot_faces(s, goal_)) {
-      if (tried >= options_.max_candidates || evaluations_ >= options_.max_evaluations) break;
+      if (tried >= options_.max_candidates || exhausted()) break;
       for (const Pattern& p : patterns()) {
         for (std::size_t seed = 0; seed < p.chosen.size(); ++seed) {
           for (int rot = 0; rot < 4; ++rot) {
@@ -502,6 +502,7 @@ class Search {
             next.moves.back().self_crossing_quads = self_crossings(next);
             ++tried;
             ++evaluations_;
+            work_ += next.faces.size();
             insert(best, std::move(next), keep);
           }
         }
@@ -511,7 +512,9 @@ class Search {
   }
 
   [[nodiscard]] std::size_t evaluations() const { return evaluations_; }
-  [[nodiscard]] bool exhausted() const { return evaluations_ >= options_.max_evaluations; }
+  [[nodiscard]] bool exhausted() const {
+    return evaluations_ >= options_.max_evaluations || work_ >= options_.max_work;
+  }
 
  private:
   static void insert(std::vector<State>& best, State&& s, std::size_t keep) {
@@ -526,6 +529,7 @@ class Search {
   std::size_t max_faces_;
   Goal goal_;
   std::size_t evaluations_ = 0;
+  std::size_t work_ = 0;
   std::unordered_set<std::uint64_t> seen_fronts_;
 };
 
@@ -615,7 +619,8 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
       break;
     }
     if (search.exhausted()) {
-      stop = "evaluation bound (" + std::to_string(options.max_evaluations) + ") reached";
+      stop = "evaluation bound (" + std::to_string(options.max_evaluations) + " moves or " +
+             std::to_string(options.max_work) + " face evaluations) reached";
       break;
     }
     const bool small = current.live <= options.small_front;
@@ -648,6 +653,11 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
         current = std::move(level.front());
         improved = true;
       }
+    }
+    if (!improved && search.exhausted()) {
+      stop = "evaluation bound (" + std::to_string(options.max_evaluations) + " moves or " +
+             std::to_string(options.max_work) + " face evaluations) reached";
+      break;
     }
     if (!improved) {
       stop = "no sequence of up to " + std::to_string(depth_bound) + " moves lowers " +

@@ -54,6 +54,9 @@ struct LoopMoveOptions {
   std::size_t max_extra_faces = 400;
   /// Candidate moves evaluated in all (the search's cost bound).
   std::size_t max_evaluations = 200000;
+  /// Work bound: the sum over evaluated candidates of the front's faces (each evaluation
+  /// copies the front and re-traces its loops). About 10 s at the default.
+  std::size_t max_work = 400000000;
   /// Fronts of at most this many faces get the deeper, wider look-ahead below (they are
   /// cheap to evaluate and the moves they need are longer).
   std::size_t small_front = 48;
