@@ -254,8 +254,12 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
     r.trace = woven.trace;
     return r;
   };
-  weave::WeaveResult result = join(false);
+  weave::WeaveResult result = join(options.always_pillow);
   stc::ValidationReport check = stc::validate_hex_complex(result.complex, &surface.surface);
+  if (options.always_pillow && check.valid) {
+    report.pillowed = true;
+    report.pillow_hexes = moves.front.quads.size();
+  }
   if (!check.valid) {
     report.direct_join_violation = check.summary();
     result = join(true);

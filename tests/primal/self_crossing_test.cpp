@@ -121,6 +121,22 @@ TEST(SelfCrossing, PipelineRefusesSelfCrossingLoopsWhenTheMovesAreOff) {
   EXPECT_THROW((void)mesh_file(file_of(*mesh, "generated"), options), TopologyError);
 }
 
+// The pillow join on a surface the weave fills on its own: one pillow hex per quad, then the
+// woven hexes of the copy; certified against the input.
+TEST(SelfCrossing, ThePillowJoinIsACertifiedComplex) {
+  const SurfaceMesh box = test::box_surface(2, 2, 1);
+  SelfCrossingOptions options;
+  options.always_pillow = true;
+  SelfCrossingReport report;
+  const weave::WeaveResult r = weave_self_crossing(box, {}, {}, options, report);
+  EXPECT_TRUE(report.pillowed);
+  EXPECT_EQ(report.pillow_hexes, box.surface.quads.size());
+  EXPECT_EQ(r.complex.hexes.size(), box.surface.quads.size() + 4U);
+  const stc::ValidationReport v = stc::validate_hex_complex(r.complex, &box.surface);
+  EXPECT_TRUE(v.valid) << v.summary();
+  EXPECT_EQ(r.num_input_nodes, box.surface.num_nodes);
+}
+
 TEST(SelfCrossing, SurfacesWithSimpleLoopsDoNotGoThroughTheMoves) {
   const MeshResult r = mesh_file(file_of(test::box_surface(2, 1, 1), "box"));
   EXPECT_FALSE(r.self_crossing.used);

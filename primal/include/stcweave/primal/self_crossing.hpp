@@ -28,6 +28,9 @@ struct SelfCrossingOptions {
   /// A front of at most this many faces whose loops stay crossed, or whose weave blocks, is
   /// filled by the moves alone (`stc::fill_front`). 0: never.
   std::size_t fill_up_to = 200;
+  /// Join through the pillow layer even when the direct join is valid (for tests and
+  /// comparisons).
+  bool always_pillow = false;
 };
 
 /// What `weave_self_crossing` did.
