@@ -75,10 +75,12 @@ FaceKey face_key(const stc::Quad& q) {
 std::vector<std::array<weave::DualLink, 6>> rebuild_dual(const stc::HexComplex& complex,
                                                          const stc::QuadSurface& input) {
   std::map<FaceKey, std::vector<std::pair<std::int32_t, std::int8_t>>> faces;
-  for (std::size_t h = 0; h < complex.hexes.size(); ++h)
-    for (int f = 0; f < 6; ++f)
+  for (std::size_t h = 0; h < complex.hexes.size(); ++h) {
+    for (int f = 0; f < 6; ++f) {
       faces[face_key(stc::hex_face(complex.hexes[h], f))].emplace_back(static_cast<std::int32_t>(h),
                                                                        static_cast<std::int8_t>(f));
+    }
+  }
   std::map<FaceKey, std::int32_t> quads;
   for (std::size_t q = 0; q < input.quads.size(); ++q)
     quads.emplace(face_key(input.quads[q]), static_cast<std::int32_t>(q));

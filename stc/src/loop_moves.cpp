@@ -558,10 +558,11 @@ State initial_state(const QuadSurface& surface) {
         throw InvalidInput("untangle_loops: quad q" + std::to_string(q) +
                            " has a node out of range or a repeated node");
       if (!directed.emplace(key(a, b), static_cast<Slot>(4 * q + static_cast<std::size_t>(i)))
-               .second)
+               .second) {
         throw InvalidInput("untangle_loops: edge " + a.str() + "-" + b.str() +
                            " is used twice in the same direction: the surface must be "
                            "manifold and consistently oriented");
+      }
       s.node_face[a.index()] = static_cast<Slot>(q);
     }
   }
@@ -570,10 +571,11 @@ State initial_state(const QuadSurface& surface) {
       const NodeId a = s.faces[q][static_cast<std::size_t>(i)];
       const NodeId b = s.faces[q][static_cast<std::size_t>((i + 1) % 4)];
       const auto it = directed.find(key(b, a));
-      if (it == directed.end())
+      if (it == directed.end()) {
         throw InvalidInput("untangle_loops: edge " + a.str() + "-" + b.str() + " of quad q" +
                            std::to_string(q) +
                            " has no reverse: the surface must be closed and consistently oriented");
+      }
       s.nbr[4 * q + static_cast<std::size_t>(i)] = it->second;
     }
   }

@@ -21,9 +21,11 @@ TEST(CorpusSelfCrossing, GenusZeroFilesWithSelfCrossingLoopsAreMeshedOrRefusedCl
            v.value("self_intersecting_loops", 0) > 0 && v.value("quads", 0) % 2 == 0 &&
            v.value("quads", 0) <= 6000;
   });
+  // One file per surface: the .boundary.obj beside each hex mesh has the same quads.
   if (files.empty()) GTEST_SKIP() << "shared data not found at " << STCWEAVE_SHARED_DATA;
   bool sweep_seen = false;
   for (const auto& name : files) {
+    if (name.find(".boundary.obj") == std::string::npos) continue;
     SCOPED_TRACE(name);
     const auto file = primal::read_mesh(test::shared_data() / name);
     primal::MeshOptions options;
