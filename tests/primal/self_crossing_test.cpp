@@ -59,7 +59,7 @@ TEST(SelfCrossing, GeneratedSpheresGiveCertifiedComplexesOrCleanRefusals) {
     ++even;
     SelfCrossingReport report;
     SelfCrossingOptions options;
-    options.search.max_evaluations = 20000;  // keeps the test short; the default is 200000
+    options.search.max_evaluations = 20000;  // keeps the test short; the default (200000) gives the same count
     try {
       const weave::WeaveResult r = weave_self_crossing(*mesh, {}, {}, options, report);
       const stc::ValidationReport v = stc::validate_hex_complex(r.complex, &mesh->surface);
@@ -67,6 +67,11 @@ TEST(SelfCrossing, GeneratedSpheresGiveCertifiedComplexesOrCleanRefusals) {
       EXPECT_EQ(r.num_input_nodes, mesh->surface.num_nodes);
       EXPECT_EQ(r.dual.size(), r.complex.hexes.size());
       if (v.valid) ++valid;
+      std::cout << "seed " << seed << " (" << mesh->surface.quads.size()
+                << " quads): " << r.complex.hexes.size() << " hexes (" << report.attached_hexes
+                << " attached, " << report.woven_hexes << " woven"
+                << (report.pillowed ? ", pillowed" : "")
+                << (report.filled ? ", filled by moves" : "") << ")\n";
       max_hexes = std::max(max_hexes, r.complex.hexes.size());
     } catch (const WeaveError& e) {
       EXPECT_NE(std::string(e.what()).find("self-intersecting loops"), std::string::npos);
