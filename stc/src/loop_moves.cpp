@@ -65,7 +65,7 @@ const std::vector<Pattern>& patterns() {
 }
 
 /// Lexicographic score: self-crossing quads, self-intersecting loops, front faces.
-using Score = std::tuple<std::size_t, std::size_t, std::size_t>;
+using Score = std::tuple<std::size_t, std::size_t, std::size_t, std::size_t>;
 
 struct State {
   std::vector<Quad> faces;
@@ -123,8 +123,14 @@ void evaluate(State& s, Goal goal = Goal::SimpleLoops) {
   }
   const auto self_loops = static_cast<std::size_t>(
       std::count(s.loop_self.begin(), s.loop_self.end(), static_cast<std::uint8_t>(1)));
-  s.score = goal == Goal::SimpleLoops ? Score{self_quads, self_loops, s.live}
-                                      : Score{s.live, self_quads, self_loops};
+  std::vector<std::size_t> per_loop(static_cast<std::size_t>(loops), 0);
+  for (std::size_t f = 0; f < n; ++f)
+    if (s.alive[f] != 0U && s.face_loop[2 * f] == s.face_loop[2 * f + 1])
+      ++per_loop[static_cast<std::size_t>(s.face_loop[2 * f])];
+  const auto odd = static_cast<std::size_t>(
+      std::count_if(per_loop.begin(), per_loop.end(), [](std::size_t c) { return c % 2 == 1; }));
+  s.score = goal == Goal::SimpleLoops ? Score{odd, self_quads, self_loops, s.live}
+                                      : Score{s.live, self_quads, self_loops, 0};
 }
 
 std::size_t self_crossings(const State& s) {
@@ -597,8 +603,8 @@ LoopMoveResult result_of(const State& s, std::size_t num_input_nodes) {
     r.front_input.push_back(o >= 0 ? -1 : -o - 1);
   }
   r.moves = s.moves;
-  r.self_crossing_quads_after = std::get<0>(s.score);
-  r.simple = std::get<0>(s.score) == 0;
+  r.self_crossing_quads_after = std::get<1>(s.score);
+  r.simple = std::get<1>(s.score) == 0;
   return r;
 }
 
@@ -608,7 +614,7 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
          LoopMoveResult& r) {
   Search search(options, input_quads, goal);
   const auto done = [&](const State& s) {
-    return goal == Goal::SimpleLoops ? std::get<0>(s.score) == 0 : s.live == 0;
+    return goal == Goal::SimpleLoops ? std::get<1>(s.score) == 0 : s.live == 0;
   };
   // The part of the score the beam must lower (the goal's own figures).
   const auto key = [](const State& s) {
@@ -664,7 +670,7 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
     if (!improved) {
       stop = "no sequence of up to " + std::to_string(depth_bound) + " moves lowers " +
              (goal == Goal::SimpleLoops
-                  ? "the self-crossings (" + std::to_string(std::get<0>(current.score)) +
+                  ? "the self-crossings (" + std::to_string(std::get<1>(current.score)) +
                         " quads left)"
                   : "the front (" + std::to_string(current.live) + " faces left)");
       break;
@@ -678,7 +684,7 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
 
 LoopMoveResult untangle_loops(const QuadSurface& surface, const LoopMoveOptions& options) {
   State current = initial_state(surface);
-  const std::size_t before = std::get<0>(current.score);
+  const std::size_t before = std::get<1>(current.score);
   LoopMoveResult stats;
   run(current, options, Goal::SimpleLoops, surface.num_quads(), stats);
   LoopMoveResult r = result_of(current, surface.num_nodes);

@@ -100,8 +100,11 @@ struct LoopMoveResult {
 };
 
 /// Attaches hexes to `surface` until its loops are simple: greedily the move that lowers
-/// (self-crossing quads, self-intersecting loops, front faces) the most, and when no single
-/// move lowers it, a beam search over `beam_depth` moves. Every move keeps the front a closed
+/// (loops crossing themselves an odd number of times, self-crossing quads, self-intersecting
+/// loops, front faces) the most, and when no single move lowers it, a beam search over
+/// `beam_depth` moves. Odd loops come first because only a surgery can fix one (the other
+/// moves keep each loop's parity), and merging two of them makes one even loop even when it
+/// adds self-crossings for a while. Every move keeps the front a closed
 /// oriented 2-manifold quad surface with every node of valence >= 3, no two faces on the same
 /// four nodes, no two edges on the same two nodes, no face of the front equal to a face of an
 /// attached hex, and never builds a hex on two faces of one attached hex (two hexes share at
