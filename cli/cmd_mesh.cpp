@@ -53,7 +53,32 @@ struct MeshArgs {
   // Cell data and the browser page (issue 16).
   bool no_cell_data = false;
   std::string html;
+  // Surfaces whose loops cross themselves (docs/self-intersecting-loops.md).
+  bool no_loop_moves = false;
+  std::string front_on_failure;  ///< default: OUT.front.obj
+  std::size_t loop_moves_max = primal::SelfCrossingOptions{}.search.max_moves;
+  std::size_t loop_moves_beam_depth = primal::SelfCrossingOptions{}.search.beam_depth;
+  std::size_t loop_moves_beam_width = primal::SelfCrossingOptions{}.search.beam_width;
 };
+
+nlohmann::json self_crossing_json(const primal::SelfCrossingReport& s) {
+  nlohmann::json moves = nlohmann::json::object();
+  for (const auto& m : s.moves.moves)
+    moves[stc::to_string(m.move)] = moves.value(stc::to_string(m.move), 0) + 1;
+  return {{"self_crossing_quads_before", s.moves.self_crossing_quads_before},
+          {"self_crossing_quads_after", s.moves.self_crossing_quads_after},
+          {"attached_hexes", s.attached_hexes},
+          {"moves", moves},
+          {"evaluations", s.moves.evaluations},
+          {"beam_searches", s.moves.beam_searches},
+          {"front_quads", s.moves.front.quads.size()},
+          {"pillowed", s.pillowed},
+          {"pillow_hexes", s.pillow_hexes},
+          {"woven_hexes", s.woven_hexes},
+          {"direct_join_violation", s.direct_join_violation},
+          {"seconds",
+           {{"search", s.search_seconds}, {"weave", s.weave_seconds}, {"join", s.join_seconds}}}};
+}
 
 /// The position report as JSON (hex ids as "h12").
 nlohmann::json position_json(const primal::PositionReport& p) {
@@ -194,6 +219,12 @@ int run_mesh(const MeshArgs& a) {
   options.position.newton_after = a.position_newton_after;
   options.position.max_newton_steps = a.position_newton_steps;
   options.position.certify_depth = a.certify_depth;
+  options.self_crossing_moves = !a.no_loop_moves;
+  options.self_crossing.front_on_failure =
+      a.front_on_failure.empty() ? a.output + ".front.obj" : a.front_on_failure;
+  options.self_crossing.search.max_moves = a.loop_moves_max;
+  options.self_crossing.search.beam_depth = a.loop_moves_beam_depth;
+  options.self_crossing.search.beam_width = a.loop_moves_beam_width;
   const bool show_progress = a.progress || (!a.quiet && isatty(STDERR_FILENO) != 0);
   if (show_progress) {
     options.on_stage = [](const std::string& s) { std::cerr << "stcweave: " << s << "...\n"; };
@@ -310,6 +341,7 @@ int run_mesh(const MeshArgs& a) {
                      {"rolled_back_shrinks", s.rolled_back_shrinks},
                      {"parallel_merges", s.parallel_merges},
                      {"nonconvexity_seams", s.nonconvexity_seams}};
+  if (r.self_crossing.used) report["self_crossing"] = self_crossing_json(r.self_crossing);
   report["seconds"] = {{"diagnose", r.seconds.diagnose},
                        {"orient", r.seconds.orient},
                        {"weave", r.seconds.weave},
@@ -420,6 +452,20 @@ Action add_mesh_command(CLI::App& app) {
   sub->add_flag("--fail-on-inverted", args->fail_on_inverted,
                 "exit with code 4, and do not write the mesh, when hexes are still inverted "
                 "(scaled Jacobian <= 0) after untangling");
+  sub->add_flag("--no-loop-moves", args->no_loop_moves,
+                "refuse surfaces whose loops cross themselves (exit code 2) instead of attaching "
+                "hexes until they do not");
+  sub->add_option("--front-on-failure", args->front_on_failure,
+                  "where the front goes when the search for loop moves gives up (default: "
+                  "OUT.front.obj)");
+  sub->add_option("--loop-moves-max", args->loop_moves_max, "loop moves: most hexes attached")
+      ->capture_default_str();
+  sub->add_option("--loop-moves-beam-depth", args->loop_moves_beam_depth,
+                  "loop moves: moves looked ahead when no single move helps")
+      ->capture_default_str();
+  sub->add_option("--loop-moves-beam-width", args->loop_moves_beam_width,
+                  "loop moves: fronts kept per level of that look-ahead")
+      ->capture_default_str();
   sub->add_flag("--no-untangle", args->no_untangle,
                 "keep the harmonic placement of the interior nodes (no untangling)");
   sub->add_option("--start", args->start,

@@ -313,7 +313,7 @@ nlohmann::json to_json(const SurfaceDiagnosis& d) {
   return j;
 }
 
-void require_weavable(const SurfaceDiagnosis& d) {
+void require_weavable(const SurfaceDiagnosis& d, bool allow_self_intersecting_loops) {
   const std::string at = prefix(d);
   const auto quad = [&](std::size_t, QuadId q) { return quad_name(d, q); };
   const auto node = [](std::size_t, NodeId v) { return v.str(); };
@@ -398,7 +398,7 @@ void require_weavable(const SurfaceDiagnosis& d) {
                         "= 2 x inner faces + boundary quads); re-mesh the surface with an even "
                         "number of quads (e.g. split every quad into four)");
   }
-  if (!d.sites.self_intersecting_loops.empty()) {
+  if (!allow_self_intersecting_loops && !d.sites.self_intersecting_loops.empty()) {
     const SelfIntersection& first = d.sites.self_intersecting_loops.front();
     std::string others;
     if (d.sites.self_intersecting_loops.size() > 1) {

@@ -33,7 +33,7 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
 
   stage("diagnose");
   r.diagnosis = diagnose(file);
-  require_weavable(r.diagnosis);
+  require_weavable(r.diagnosis, options.self_crossing_moves);
   for (std::size_t c = 0; c < r.diagnosis.genus_per_component.size(); ++c) {
     const auto& g = r.diagnosis.genus_per_component[c];
     if (g && *g > 0) {
@@ -62,7 +62,12 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
   const std::vector<std::array<double, 4>> angles = options.weave.rules == weave::RuleSet::Extended
                                                         ? dihedral_angles(r.surface)
                                                         : std::vector<std::array<double, 4>>{};
-  r.woven = weave::weave(r.surface.surface, options.weave, angles);
+  if (options.self_crossing_moves && r.diagnosis.self_intersecting_loops.value_or(0) > 0) {
+    r.woven = weave_self_crossing(r.surface, options.weave, angles, options.self_crossing,
+                                  r.self_crossing);
+  } else {
+    r.woven = weave::weave(r.surface.surface, options.weave, angles);
+  }
   r.seconds.weave = clock.lap();
 
   stage("validate");

@@ -140,8 +140,12 @@ struct SurfaceDiagnosis {
 /// non-finite coordinates, degenerate quads, open surface, non-manifold edges,
 /// non-manifold nodes, non-orientable surface, odd number of quads, self-intersecting
 /// loops. Genus > 0 and several components are not defects here (the weaver decides).
+/// \param allow_self_intersecting_loops when true, self-intersecting loops are no defect
+///        (the pipeline attaches hexes until they are gone, `weave_self_crossing`); an odd
+///        number of quads still is.
 /// \throw TopologyError on the first defect found.
-void require_weavable(const SurfaceDiagnosis& diagnosis);
+void require_weavable(const SurfaceDiagnosis& diagnosis,
+                      bool allow_self_intersecting_loops = false);
 
 /// What `orient_outward` did.
 struct OrientationReport {

@@ -14,6 +14,7 @@
 #include "stcweave/primal/position.hpp"
 #include "stcweave/primal/quality.hpp"
 #include "stcweave/primal/recover.hpp"
+#include "stcweave/primal/self_crossing.hpp"
 #include "stcweave/stc/validate.hpp"
 #include "stcweave/weave/weave.hpp"
 
@@ -40,6 +41,12 @@ struct MeshOptions {
   /// Pillowing between recovery and positioning (stage "pillow"): `auto` by default, which
   /// pillows only the shells with a flat or non-convex fixed corner (docs/pillowing.md).
   PillowOptions pillow;
+  /// Mesh surfaces whose loops cross themselves by attaching hexes until they do not
+  /// (`weave_self_crossing`, docs/self-intersecting-loops.md); false refuses them as the seed
+  /// does.
+  bool self_crossing_moves = true;
+  /// Bounds of that search, and where the front goes when it gives up.
+  SelfCrossingOptions self_crossing;
   /// Settings of the positioning stage; `num_fixed` is set by the pipeline (the input
   /// surface's nodes are fixed).
   PositionOptions position;
@@ -77,6 +84,9 @@ struct MeshResult {
   /// and hexes appended while `woven` stays the weave's own result.
   PillowReport pillow;
   PositionReport position;  ///< empty when `MeshOptions::untangle` is false
+  /// The moves, attached hexes and join of a surface with self-intersecting loops (`used` is
+  /// false for any other surface).
+  SelfCrossingReport self_crossing;
   QualitySummary quality;
   StageSeconds seconds;
 };
@@ -84,7 +94,8 @@ struct MeshResult {
 /// Meshes the quad surface of `file` (its quads, or the boundary of its hexes).
 /// \throw TopologyError for a surface that cannot be woven (see `require_weavable`).
 /// \throw Unsupported for a component of genus > 0 or nested shells.
-/// \throw WeaveError when the weave is blocked.
+/// \throw WeaveError when the weave is blocked, or the search for front moves of a surface
+///        with self-intersecting loops gives up.
 /// \throw InternalError when the woven complex breaks an invariant (unless keep_invalid).
 MeshResult mesh_file(const MeshFile& file, const MeshOptions& options = {});
 

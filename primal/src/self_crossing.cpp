@@ -1,0 +1,286 @@
+#include "stcweave/primal/self_crossing.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <optional>
+#include <unordered_map>
+
+#include "stcweave/primal/io.hpp"
+#include "stcweave/stc/errors.hpp"
+#include "stcweave/stc/validate.hpp"
+
+namespace stcweave::primal {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+/// Positions for every node of the moves' result, for looking at the front: input nodes at
+/// their points, each node an attached hex made first at the centroid of that hex's other
+/// nodes, then 50 Jacobi sweeps of the average of its hex-edge neighbours.
+Points front_points(const Points& input, const stc::LoopMoveResult& moves) {
+  const std::size_t n = moves.hexes.num_nodes;
+  Points p = Points::Zero(static_cast<Eigen::Index>(n), 3);
+  const auto fixed = static_cast<Eigen::Index>(moves.num_input_nodes);
+  p.topRows(fixed) = input.topRows(fixed);
+  std::vector<bool> placed(n, false);
+  for (std::size_t v = 0; v < moves.num_input_nodes; ++v) placed[v] = true;
+  std::vector<std::vector<std::size_t>> adj(n);
+  for (const stc::Hex& h : moves.hexes.hexes) {
+    Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
+    int count = 0;
+    for (const NodeId v : h) {
+      if (placed[v.index()]) {
+        sum += p.row(static_cast<Eigen::Index>(v.index()));
+        ++count;
+      }
+    }
+    for (const NodeId v : h) {
+      if (!placed[v.index()]) {
+        p.row(static_cast<Eigen::Index>(v.index())) =
+            count > 0 ? Eigen::RowVector3d(sum / count) : Eigen::RowVector3d::Zero();
+        placed[v.index()] = true;
+      }
+    }
+    for (const auto& e : stc::kHexEdges) {
+      adj[h[static_cast<std::size_t>(e[0])].index()].push_back(
+          h[static_cast<std::size_t>(e[1])].index());
+      adj[h[static_cast<std::size_t>(e[1])].index()].push_back(
+          h[static_cast<std::size_t>(e[0])].index());
+    }
+  }
+  for (int sweep = 0; sweep < 50; ++sweep) {
+    Points next = p;
+    for (std::size_t v = moves.num_input_nodes; v < n; ++v) {
+      if (adj[v].empty()) continue;
+      Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
+      for (const std::size_t u : adj[v]) sum += p.row(static_cast<Eigen::Index>(u));
+      next.row(static_cast<Eigen::Index>(v)) = sum / static_cast<double>(adj[v].size());
+    }
+    p = next;
+  }
+  return p;
+}
+
+using FaceKey = std::array<std::int32_t, 4>;
+FaceKey face_key(const stc::Quad& q) {
+  FaceKey k{q[0].value(), q[1].value(), q[2].value(), q[3].value()};
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
+/// The woven STC of a joined complex: per hex face, the hex across it or the input quad.
+std::vector<std::array<weave::DualLink, 6>> rebuild_dual(const stc::HexComplex& complex,
+                                                         const stc::QuadSurface& input) {
+  std::map<FaceKey, std::vector<std::pair<std::int32_t, std::int8_t>>> faces;
+  for (std::size_t h = 0; h < complex.hexes.size(); ++h) {
+    for (int f = 0; f < 6; ++f) {
+      faces[face_key(stc::hex_face(complex.hexes[h], f))].emplace_back(static_cast<std::int32_t>(h),
+                                                                       static_cast<std::int8_t>(f));
+    }
+  }
+  std::map<FaceKey, std::int32_t> quads;
+  for (std::size_t q = 0; q < input.quads.size(); ++q)
+    quads.emplace(face_key(input.quads[q]), static_cast<std::int32_t>(q));
+  std::vector<std::array<weave::DualLink, 6>> dual(complex.hexes.size());
+  for (std::size_t h = 0; h < complex.hexes.size(); ++h) {
+    for (int f = 0; f < 6; ++f) {
+      const FaceKey k = face_key(stc::hex_face(complex.hexes[h], f));
+      weave::DualLink& link = dual[h][static_cast<std::size_t>(f)];
+      for (const auto& [other, of] : faces[k]) {
+        if (other != static_cast<std::int32_t>(h)) {
+          link.id = other;
+          link.local_face = of;
+        }
+      }
+      if (link.id < 0) {
+        const auto it = quads.find(k);
+        link.is_boundary = true;
+        link.id = it == quads.end() ? -1 : it->second;
+      }
+    }
+  }
+  return dual;
+}
+
+}  // namespace
+
+weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
+                                       const weave::WeaveOptions& weave_options,
+                                       const std::vector<std::array<double, 4>>& side_angles,
+                                       const SelfCrossingOptions& options,
+                                       SelfCrossingReport& report) {
+  report = SelfCrossingReport{};
+  report.used = true;
+  auto t = std::chrono::steady_clock::now();
+  report.moves = stc::untangle_loops(surface.surface, options.search);
+  const stc::LoopMoveResult& moves = report.moves;
+  report.attached_hexes = moves.hexes.hexes.size();
+  report.search_seconds = seconds_since(t);
+  const auto give_up = [&](const stc::LoopMoveResult& at, const std::string& why) {
+    std::string where;
+    if (!options.front_on_failure.empty()) {
+      SurfaceMesh front{front_points(surface.points, at), at.front};
+      write_surface(front, options.front_on_failure);
+      where = "; the front at that point (" + std::to_string(at.front.quads.size()) +
+              " quads) is written to " + options.front_on_failure;
+    }
+    throw WeaveError("self-intersecting loops: " + why + " with " +
+                     std::to_string(at.self_crossing_quads_after) + " of " +
+                     std::to_string(at.self_crossing_quads_before) +
+                     " self-crossing quads left after " + std::to_string(at.moves.size()) +
+                     " attached hexes" + where +
+                     "; raise the search bounds (--loop-moves-*) or re-mesh the surface so that "
+                     "fewer loops cross themselves");
+  };
+  // Fills the front by moves alone: the whole complex is the attached hexes.
+  const auto fill = [&]() -> std::optional<weave::WeaveResult> {
+    if (moves.front.quads.size() > options.fill_up_to) return std::nullopt;
+    const auto t_fill = std::chrono::steady_clock::now();
+    stc::LoopMoveResult filled = stc::fill_front(moves, options.search);
+    report.search_seconds += seconds_since(t_fill);
+    if (!filled.simple) return std::nullopt;
+    weave::WeaveResult r;
+    r.num_input_nodes = filled.num_input_nodes;
+    r.complex = filled.hexes;
+    r.hex_rule.assign(r.complex.hexes.size(), "attached");
+    r.hex_shrink.assign(r.complex.hexes.size(), -1);
+    const stc::ValidationReport check = stc::validate_hex_complex(r.complex, &surface.surface);
+    if (!check.valid) {
+      throw InternalError("self-intersecting loops: the " + std::to_string(r.complex.hexes.size()) +
+                          " hexes that fill the front are not a valid complex (" + check.summary() +
+                          "); please report this surface");
+    }
+    r.dual = rebuild_dual(r.complex, surface.surface);
+    report.moves = std::move(filled);
+    report.attached_hexes = r.complex.hexes.size();
+    report.filled = true;
+    return r;
+  };
+  if (!moves.simple) {
+    if (auto r = fill()) return std::move(*r);
+    give_up(moves, "the search for front moves gave up (" + moves.stop_reason + ")");
+  }
+
+  // The front with compact node ids (all of them "input" nodes for the weaver).
+  t = std::chrono::steady_clock::now();
+  std::vector<NodeId> front_nodes;
+  for (const stc::Quad& q : moves.front.quads)
+    front_nodes.insert(front_nodes.end(), q.begin(), q.end());
+  std::sort(front_nodes.begin(), front_nodes.end());
+  front_nodes.erase(std::unique(front_nodes.begin(), front_nodes.end()), front_nodes.end());
+  std::unordered_map<std::int32_t, NodeId> compact;
+  for (std::size_t i = 0; i < front_nodes.size(); ++i)
+    compact.emplace(front_nodes[i].value(), NodeId(i));
+  stc::QuadSurface front;
+  front.num_nodes = front_nodes.size();
+  for (const stc::Quad& q : moves.front.quads) {
+    stc::Quad c{};
+    for (std::size_t i = 0; i < 4; ++i) c[i] = compact.at(q[i].value());
+    front.quads.push_back(c);
+  }
+  std::vector<std::array<double, 4>> angles;
+  if (!side_angles.empty()) {
+    std::unordered_map<std::uint64_t, std::size_t> directed;
+    const auto key = [](NodeId a, NodeId b) {
+      return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a.value())) << 32U) |
+             static_cast<std::uint32_t>(b.value());
+    };
+    for (std::size_t q = 0; q < front.quads.size(); ++q)
+      for (std::size_t i = 0; i < 4; ++i)
+        directed.emplace(key(front.quads[q][i], front.quads[q][(i + 1) % 4]), q);
+    angles.resize(front.quads.size());
+    for (std::size_t q = 0; q < front.quads.size(); ++q) {
+      for (std::size_t i = 0; i < 4; ++i) {
+        const auto it = directed.find(key(front.quads[q][(i + 1) % 4], front.quads[q][i]));
+        const std::size_t o = it == directed.end() ? q : it->second;
+        double a = 180.0;
+        if (moves.front_input[q] >= 0 && moves.front_input[o] >= 0) {
+          // An untouched input quad keeps its node order, so its side i is the input's.
+          a = side_angles[static_cast<std::size_t>(moves.front_input[q])][i];
+        } else if (moves.front_hex[q] >= 0 && moves.front_hex[q] == moves.front_hex[o]) {
+          a = 270.0;  // two faces of one attached hex: the hex fills a right angle there
+        }
+        angles[q][i] = a;
+      }
+    }
+  }
+  weave::WeaveResult woven;
+  try {
+    woven = weave::weave(front, weave_options, angles);
+  } catch (const WeaveError& e) {
+    report.weave_failure = e.what();
+    report.weave_seconds = seconds_since(t);
+    if (auto r = fill()) return std::move(*r);
+    give_up(moves, "the loops are simple after " + std::to_string(moves.moves.size()) +
+                       " attached hexes, but the weave of the front blocked (" + e.what() + ")");
+  }
+  report.woven_hexes = woven.complex.hexes.size();
+  report.weave_seconds = seconds_since(t);
+
+  // Join: attached hexes + woven hexes, woven nodes mapped back.
+  t = std::chrono::steady_clock::now();
+  const std::size_t m = front_nodes.size();
+  const std::size_t base = moves.hexes.num_nodes;
+  const auto join = [&](bool pillow) {
+    weave::WeaveResult r;
+    r.num_input_nodes = moves.num_input_nodes;
+    r.complex.hexes = moves.hexes.hexes;
+    r.hex_rule.assign(r.complex.hexes.size(), "attached");
+    r.hex_shrink.assign(r.complex.hexes.size(), -1);
+    const auto woven_node = [&](NodeId v) {
+      if (pillow) return NodeId(base + v.index());
+      return v.index() < m ? front_nodes[v.index()] : NodeId(base + (v.index() - m));
+    };
+    if (pillow) {
+      for (const stc::Quad& q : moves.front.quads) {
+        const auto star = [&](NodeId v) { return NodeId(base + compact.at(v.value()).index()); };
+        r.complex.hexes.push_back(
+            {q[0], q[3], q[2], q[1], star(q[0]), star(q[3]), star(q[2]), star(q[1])});
+        r.hex_rule.emplace_back("pillow");
+        r.hex_shrink.push_back(-1);
+      }
+    }
+    for (std::size_t h = 0; h < woven.complex.hexes.size(); ++h) {
+      stc::Hex x{};
+      for (std::size_t i = 0; i < 8; ++i) x[i] = woven_node(woven.complex.hexes[h][i]);
+      r.complex.hexes.push_back(x);
+      r.hex_rule.push_back(h < woven.hex_rule.size() ? woven.hex_rule[h] : "woven");
+      r.hex_shrink.push_back(h < woven.hex_shrink.size() ? woven.hex_shrink[h] : -1);
+    }
+    r.complex.num_nodes =
+        pillow ? base + woven.complex.num_nodes : base + (woven.complex.num_nodes - m);
+    r.stats = woven.stats;
+    r.trace = woven.trace;
+    return r;
+  };
+  weave::WeaveResult result = join(options.always_pillow);
+  stc::ValidationReport check = stc::validate_hex_complex(result.complex, &surface.surface);
+  if (options.always_pillow && check.valid) {
+    report.pillowed = true;
+    report.pillow_hexes = moves.front.quads.size();
+  }
+  if (!check.valid) {
+    report.direct_join_violation = check.summary();
+    result = join(true);
+    check = stc::validate_hex_complex(result.complex, &surface.surface);
+    if (!check.valid) {
+      throw InternalError("self-intersecting loops: neither joining the " +
+                          std::to_string(report.attached_hexes) + " attached hexes to the " +
+                          std::to_string(report.woven_hexes) +
+                          " woven ones directly nor through a pillow layer gives a valid complex "
+                          "(direct: " +
+                          report.direct_join_violation + "; pillowed: " + check.summary() +
+                          "); please report this surface");
+    }
+    report.pillowed = true;
+    report.pillow_hexes = moves.front.quads.size();
+  }
+  result.dual = rebuild_dual(result.complex, surface.surface);
+  report.join_seconds = seconds_since(t);
+  return result;
+}
+
+}  // namespace stcweave::primal

@@ -1,0 +1,129 @@
+#pragma once
+/// \file
+/// Front moves that reroute the loops of a quad surface: attach hexes to the surface until no
+/// loop crosses itself, so that the rest can be woven by loop shrinking (docs/
+/// self-intersecting-loops.md).
+///
+/// Attaching a hex to a front (the surface, oriented outward from the region still to mesh) on
+/// k of its faces replaces those k front faces with the hex's 6 - k other faces: a flip of the
+/// front. Each flip acts on the loops as a local move: a cross (k = 3 around a valence-3 node)
+/// is a Reidemeister III move of three loops, a blind chord (k = 2) adds a bigon, a bigon
+/// removal (k = 4, the two faces left adjacent) removes one, a bump (k = 1) adds a small loop,
+/// a cap (k = 5) removes one, and the two surgeries, U (k = 3, a strip of three faces) and
+/// tube (k = 4, a ring of four), reconnect the loops passing through them. Only a surgery can
+/// turn a loop with an odd number of self-crossings into simple loops: the other moves are
+/// regular homotopies of the loops, which keep each loop's number of self-crossings even or odd.
+///
+/// Pure topology: no coordinates.
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "stcweave/stc/quad_surface.hpp"
+
+namespace stcweave::stc {
+
+/// The ways a hex can be attached to the front, by the set of its faces lying on the front.
+enum class FrontMove : std::uint8_t {
+  Bump,        ///< k = 1: one face; four new nodes
+  BlindChord,  ///< k = 2: two faces sharing an edge; two new nodes
+  Cross,       ///< k = 3: the three faces around a valence-3 node; one new node
+  Surgery,     ///< k = 3: a strip of three faces (two opposite hex faces and one between)
+  Bigon,       ///< k = 4: four faces whose complement is two faces sharing an edge
+  Tube,        ///< k = 4: a ring of four faces (splits the front in two)
+  Cap,         ///< k = 5: five faces (removes a bump)
+  Close,       ///< k = 6: a front component that is one hex's boundary
+};
+
+/// "bump", "blind-chord", "cross", "surgery", "bigon", "tube", "cap", "close".
+[[nodiscard]] std::string to_string(FrontMove move);
+
+/// Bounds of the search. Every bound is a hard limit; the search says which one stopped it.
+struct LoopMoveOptions {
+  /// Moves applied in all (the attached hexes).
+  std::size_t max_moves = 400;
+  /// Candidate moves evaluated from one front (those nearest the self-crossings first).
+  std::size_t max_candidates = 600;
+  /// Fronts kept per level of the beam search, run when no single move improves the score.
+  std::size_t beam_width = 8;
+  /// Levels of the beam search (moves looked ahead).
+  std::size_t beam_depth = 3;
+  /// The front may not grow beyond the input's quads plus this many faces.
+  std::size_t max_extra_faces = 400;
+  /// Candidate moves evaluated in all (the search's cost bound).
+  std::size_t max_evaluations = 200000;
+  /// Work bound: the sum over evaluated candidates of the front's faces (each evaluation
+  /// copies the front and re-traces its loops). About 30 s at the default (measured: 4e8 took
+  /// 127 s on a 10,096-quad surface).
+  std::size_t max_work = 100000000;
+  /// Fronts of at most this many faces get the deeper, wider look-ahead below (they are
+  /// cheap to evaluate and the moves they need are longer).
+  std::size_t small_front = 48;
+  std::size_t small_beam_depth = 10;
+  std::size_t small_beam_width = 48;
+};
+
+/// One move of the search, as applied.
+struct AppliedMove {
+  FrontMove move = FrontMove::Bump;
+  HexId hex;                            ///< the attached hex
+  std::size_t self_crossing_quads = 0;  ///< on the front after the move
+  std::size_t front_faces = 0;          ///< after the move
+};
+
+/// The outcome of `untangle_loops`.
+struct LoopMoveResult {
+  /// The attached hexes (VTK order, positively oriented for an outward input). Node ids:
+  /// the input's 0 .. num_input_nodes-1, then the nodes the hexes made; `num_nodes` counts
+  /// them all.
+  HexComplex hexes;
+  std::size_t num_input_nodes = 0;
+  /// The front after the moves, outward from the region still to mesh, over the same node
+  /// ids (`front.num_nodes == hexes.num_nodes`). Its faces are input quads and faces of the
+  /// attached hexes (reversed).
+  QuadSurface front;
+  /// Per front quad, the attached hex it is a face of, or -1 for an input quad.
+  std::vector<std::int32_t> front_hex;
+  /// Per front quad, the input quad it is, or -1 for a face of an attached hex.
+  std::vector<std::int32_t> front_input;
+  std::vector<AppliedMove> moves;
+  std::size_t self_crossing_quads_before = 0;
+  std::size_t self_crossing_quads_after = 0;
+  std::size_t evaluations = 0;  ///< candidate moves evaluated
+  std::size_t beam_searches = 0;
+  /// True when no loop of `front` crosses itself.
+  bool simple = false;
+  /// Why the search stopped ("simple", or which bound).
+  std::string stop_reason;
+};
+
+/// Attaches hexes to `surface` until its loops are simple: greedily the move that lowers
+/// (loops crossing themselves an odd number of times, self-crossing quads, self-intersecting
+/// loops, front faces) the most, and when no single move lowers it, a beam search over
+/// `beam_depth` moves. Odd loops come first because only a surgery can fix one (the other
+/// moves keep each loop's parity), and merging two of them makes one even loop even when it
+/// adds self-crossings for a while. Every move keeps the front a closed
+/// oriented 2-manifold quad surface with every node of valence >= 3, no two faces on the same
+/// four nodes, no two edges on the same two nodes, no face of the front equal to a face of an
+/// attached hex, and never builds a hex on two faces of one attached hex (two hexes share at
+/// most one face). Deterministic.
+/// \pre `surface` is closed, manifold, consistently oriented outward, with four distinct
+///      nodes per quad.
+/// \throw InvalidInput when the surface is not closed and consistently oriented.
+[[nodiscard]] LoopMoveResult untangle_loops(const QuadSurface& surface,
+                                            const LoopMoveOptions& options = {});
+
+/// Goes on from `start` (a result of `untangle_loops`, simple or not) attaching hexes until
+/// the front is empty: greedily the move that lowers (front faces, self-crossing quads,
+/// self-intersecting loops) the most, with the same beam search when none does, under the
+/// same preconditions; a component that is one hex's boundary is closed by that hex. The
+/// completion Verhetsel et al. search for; meant for small fronts, where the weave of the
+/// front can block. `simple` is then true when the front is empty; `moves` lists `start`'s
+/// moves and the new ones.
+/// \pre `start` is a result of `untangle_loops`.
+[[nodiscard]] LoopMoveResult fill_front(const LoopMoveResult& start,
+                                        const LoopMoveOptions& options = {});
+
+}  // namespace stcweave::stc

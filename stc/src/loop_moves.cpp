@@ -1,0 +1,716 @@
+#include "stcweave/stc/loop_moves.hpp"
+
+#include <algorithm>
+#include <array>
+#include <deque>
+#include <limits>
+#include <tuple>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "stcweave/stc/errors.hpp"
+
+// The search works on its own compact front: face slots (four nodes, outward from the region
+// still to mesh) with, per side, the slot side across it. Faces are never moved, only killed
+// and appended, so slot numbers (and the whole run) are deterministic. A state is copied for
+// every candidate move it evaluates: the copy is O(front) and so is re-tracing the loops.
+
+namespace stcweave::stc {
+
+std::string to_string(FrontMove move) {
+  switch (move) {
+    case FrontMove::Bump:
+      return "bump";
+    case FrontMove::BlindChord:
+      return "blind-chord";
+    case FrontMove::Cross:
+      return "cross";
+    case FrontMove::Surgery:
+      return "surgery";
+    case FrontMove::Bigon:
+      return "bigon";
+    case FrontMove::Tube:
+      return "tube";
+    case FrontMove::Cap:
+      return "cap";
+    case FrontMove::Close:
+      return "close";
+  }
+  return "?";
+}
+
+namespace {
+
+using Slot = std::int32_t;
+constexpr Slot kNone = -1;
+
+/// A move's shape: the hex faces (kHexFaces indices) lying on the front.
+struct Pattern {
+  FrontMove move;
+  std::vector<int> chosen;
+};
+
+const std::vector<Pattern>& patterns() {
+  static const std::vector<Pattern> p = {
+      {FrontMove::Bump, {0}},
+      {FrontMove::BlindChord, {0, 2}},
+      {FrontMove::Cross, {0, 2, 5}},
+      {FrontMove::Surgery, {0, 2, 4}},
+      {FrontMove::Bigon, {0, 2, 4, 5}},
+      {FrontMove::Tube, {2, 3, 4, 5}},
+      {FrontMove::Cap, {0, 2, 3, 4, 5}},
+      {FrontMove::Close, {0, 1, 2, 3, 4, 5}},
+  };
+  return p;
+}
+
+/// Lexicographic score: self-crossing quads, self-intersecting loops, front faces.
+using Score = std::tuple<std::size_t, std::size_t, std::size_t, std::size_t>;
+
+struct State {
+  std::vector<Quad> faces;
+  std::vector<std::int32_t> owner;  ///< >= 0: attached hex; < 0: input quad -(id)-1
+  std::vector<std::uint8_t> alive;
+  std::vector<Slot> nbr;        ///< 4 per slot: slot*4 + side across
+  std::vector<Slot> node_face;  ///< per node: a live slot holding it, or kNone
+  std::vector<Hex> hexes;
+  std::vector<AppliedMove> moves;
+  std::size_t num_nodes = 0;
+  std::size_t live = 0;
+  Score score{};
+  std::vector<std::int32_t> face_loop;  ///< 2 per slot, from the last evaluation
+  std::vector<std::uint8_t> loop_self;  ///< per loop: crosses itself
+};
+
+int corner(const Quad& q, NodeId v) {
+  for (int i = 0; i < 4; ++i)
+    if (q[static_cast<std::size_t>(i)] == v) return i;
+  return -1;
+}
+
+/// What the search minimises first: the self-crossings (untangle) or the front (fill).
+enum class Goal { SimpleLoops, EmptyFront };
+
+/// Traces every loop; sets face_loop, loop_self and the score.
+void evaluate(State& s, Goal goal = Goal::SimpleLoops) {
+  const std::size_t n = s.faces.size();
+  s.face_loop.assign(2 * n, -1);
+  s.loop_self.clear();
+  std::size_t self_quads = 0;
+  std::int32_t loops = 0;
+  for (std::size_t f = 0; f < n; ++f) {
+    if (s.alive[f] == 0U) continue;
+    for (int d = 0; d < 2; ++d) {
+      if (s.face_loop[2 * f + static_cast<std::size_t>(d)] >= 0) continue;
+      std::size_t g = f;
+      int entry = d;
+      while (s.face_loop[2 * g + static_cast<std::size_t>(entry % 2)] < 0) {
+        s.face_loop[2 * g + static_cast<std::size_t>(entry % 2)] = loops;
+        const Slot across = s.nbr[4 * g + static_cast<std::size_t>((entry + 2) % 4)];
+        g = static_cast<std::size_t>(across / 4);
+        entry = across % 4;
+      }
+      ++loops;
+    }
+  }
+  s.loop_self.assign(static_cast<std::size_t>(loops), 0);
+  for (std::size_t f = 0; f < n; ++f) {
+    if (s.alive[f] == 0U) continue;
+    if (s.face_loop[2 * f] == s.face_loop[2 * f + 1]) {
+      ++self_quads;
+      s.loop_self[static_cast<std::size_t>(s.face_loop[2 * f])] = 1;
+    }
+  }
+  const auto self_loops = static_cast<std::size_t>(
+      std::count(s.loop_self.begin(), s.loop_self.end(), static_cast<std::uint8_t>(1)));
+  std::vector<std::size_t> per_loop(static_cast<std::size_t>(loops), 0);
+  for (std::size_t f = 0; f < n; ++f)
+    if (s.alive[f] != 0U && s.face_loop[2 * f] == s.face_loop[2 * f + 1])
+      ++per_loop[static_cast<std::size_t>(s.face_loop[2 * f])];
+  const auto odd = static_cast<std::size_t>(
+      std::count_if(per_loop.begin(), per_loop.end(), [](std::size_t c) { return c % 2 == 1; }));
+  s.score = goal == Goal::SimpleLoops ? Score{odd, self_quads, self_loops, s.live}
+                                      : Score{s.live, self_quads, self_loops, 0};
+}
+
+std::size_t self_crossings(const State& s) {
+  std::size_t n = 0;
+  for (std::size_t f = 0; f < s.faces.size(); ++f)
+    if (s.alive[f] != 0U && s.face_loop[2 * f] == s.face_loop[2 * f + 1]) ++n;
+  return n;
+}
+
+/// The faces around node `v` in order (walking across the side leaving v), and their count.
+template <class Visit>
+std::size_t walk_fan(const State& s, NodeId v, Visit&& visit) {
+  const Slot start = s.node_face[v.index()];
+  if (start == kNone) return 0;
+  Slot f = start;
+  std::size_t count = 0;
+  do {
+    const int i = corner(s.faces[static_cast<std::size_t>(f)], v);
+    if (i < 0 || count > s.faces.size()) return count;  // broken front: caller's checks fail
+    visit(f, i);
+    ++count;
+    const Slot across = s.nbr[4 * static_cast<std::size_t>(f) + static_cast<std::size_t>(i)];
+    f = across / 4;
+  } while (f != start);
+  return count;
+}
+
+bool front_edge(const State& s, NodeId a, NodeId b) {
+  bool found = false;
+  walk_fan(s, a, [&](Slot f, int i) {
+    const Quad& q = s.faces[static_cast<std::size_t>(f)];
+    if (q[static_cast<std::size_t>((i + 1) % 4)] == b ||
+        q[static_cast<std::size_t>((i + 3) % 4)] == b)
+      found = true;
+  });
+  return found;
+}
+
+bool same_nodes(Quad a, Quad b) {
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  return a == b;
+}
+
+bool front_face_on(const State& s, const Quad& q) {
+  bool found = false;
+  walk_fan(s, q[0], [&](Slot f, int) {
+    if (same_nodes(s.faces[static_cast<std::size_t>(f)], q)) found = true;
+  });
+  return found;
+}
+
+bool hex_edge_on(const State& s, NodeId a, NodeId b) {
+  for (const Hex& h : s.hexes) {
+    for (const auto& e : kHexEdges) {
+      const NodeId x = h[static_cast<std::size_t>(e[0])];
+      const NodeId y = h[static_cast<std::size_t>(e[1])];
+      if ((x == a && y == b) || (x == b && y == a)) return true;
+    }
+  }
+  return false;
+}
+
+bool hex_face_on(const State& s, const Quad& q) {
+  for (const Hex& h : s.hexes)
+    for (int f = 0; f < 6; ++f)
+      if (same_nodes(hex_face(h, f), q)) return true;
+  return false;
+}
+
+/// A candidate: the pattern, the front node of every hex local node (invalid: a new node)
+/// and the slot of every chosen hex face.
+struct Candidate {
+  const Pattern* pattern = nullptr;
+  std::array<NodeId, 8> map{};
+  std::array<Slot, 6> slot_of{};
+};
+
+bool hex_face_has(int face, int local) {
+  const auto& idx = kHexFaces[static_cast<std::size_t>(face)];
+  return std::find(idx.begin(), idx.end(), local) != idx.end();
+}
+
+/// Maps `pattern` onto the front with its hex face `pattern.chosen[seed]` on slot `f`
+/// rotated by `rot`, then checks every precondition. False when any fails.
+bool try_candidate(const State& s, const Pattern& pattern, std::size_t seed, Slot f, int rot,
+                   int min_valence, Candidate& c) {
+  c.pattern = &pattern;
+  c.map.fill(NodeId::invalid());
+  c.slot_of.fill(kNone);
+  const auto assign = [&](int hf, Slot slot, int r) {
+    const Quad& q = s.faces[static_cast<std::size_t>(slot)];
+    for (int i = 0; i < 4; ++i) {
+      const auto local = static_cast<std::size_t>(
+          kHexFaces[static_cast<std::size_t>(hf)][static_cast<std::size_t>(i)]);
+      const NodeId node = q[static_cast<std::size_t>((i + r) % 4)];
+      if (!c.map[local].is_valid()) {
+        c.map[local] = node;
+      } else if (c.map[local] != node) {
+        return false;
+      }
+    }
+    c.slot_of[static_cast<std::size_t>(hf)] = slot;
+    return true;
+  };
+  if (!assign(pattern.chosen[seed], f, rot)) return false;
+  // Grow through shared hex edges, in pattern order (deterministic).
+  bool grew = true;
+  while (grew) {
+    grew = false;
+    for (const int t : pattern.chosen) {
+      if (c.slot_of[static_cast<std::size_t>(t)] != kNone) continue;
+      for (const int u : pattern.chosen) {
+        const Slot us = c.slot_of[static_cast<std::size_t>(u)];
+        if (us == kNone) continue;
+        // A directed edge a->b of hex face u that hex face t holds as b->a.
+        const auto& iu = kHexFaces[static_cast<std::size_t>(u)];
+        const auto& it = kHexFaces[static_cast<std::size_t>(t)];
+        int side_u = -1;
+        int side_t = -1;
+        for (int i = 0; i < 4 && side_u < 0; ++i) {
+          for (int k = 0; k < 4; ++k) {
+            if (it[static_cast<std::size_t>(k)] == iu[static_cast<std::size_t>((i + 1) % 4)] &&
+                it[static_cast<std::size_t>((k + 1) % 4)] == iu[static_cast<std::size_t>(i)]) {
+              side_u = i;
+              side_t = k;
+              break;
+            }
+          }
+        }
+        if (side_u < 0) continue;
+        // The slot side holding map[a] -> map[b] in slot us.
+        const Quad& uq = s.faces[static_cast<std::size_t>(us)];
+        const NodeId a = c.map[static_cast<std::size_t>(iu[static_cast<std::size_t>(side_u)])];
+        int j = corner(uq, a);
+        if (j < 0) return false;
+        const Slot across = s.nbr[4 * static_cast<std::size_t>(us) + static_cast<std::size_t>(j)];
+        const Slot g = across / 4;
+        const int jg = across % 4;
+        if (!assign(t, g, ((jg - side_t) % 4 + 4) % 4)) return false;
+        grew = true;
+        break;
+      }
+    }
+  }
+  // Distinct slots, distinct owners (a hex never gets two faces of one attached hex).
+  std::vector<Slot> slots;
+  std::vector<std::int32_t> owners;
+  for (const int t : pattern.chosen) {
+    const Slot sl = c.slot_of[static_cast<std::size_t>(t)];
+    if (sl == kNone) return false;
+    slots.push_back(sl);
+    const std::int32_t o = s.owner[static_cast<std::size_t>(sl)];
+    if (o >= 0) owners.push_back(o);
+  }
+  std::sort(slots.begin(), slots.end());
+  if (std::adjacent_find(slots.begin(), slots.end()) != slots.end()) return false;
+  std::sort(owners.begin(), owners.end());
+  if (std::adjacent_find(owners.begin(), owners.end()) != owners.end()) return false;
+  // Every chosen face must match its slot exactly (the growth checked the nodes it met).
+  for (const int t : pattern.chosen) {
+    const Quad& q = s.faces[static_cast<std::size_t>(c.slot_of[static_cast<std::size_t>(t)])];
+    const Quad h = hex_face(
+        Hex{NodeId(0), NodeId(1), NodeId(2), NodeId(3), NodeId(4), NodeId(5), NodeId(6), NodeId(7)},
+        t);
+    const int r = corner(q, c.map[h[0].index()]);
+    if (r < 0) return false;
+    for (int i = 0; i < 4; ++i)
+      if (q[static_cast<std::size_t>((i + r) % 4)] != c.map[h[static_cast<std::size_t>(i)].index()])
+        return false;
+  }
+  // Injective node map.
+  std::vector<NodeId> mapped;
+  for (const NodeId v : c.map)
+    if (v.is_valid()) mapped.push_back(v);
+  std::sort(mapped.begin(), mapped.end());
+  if (std::adjacent_find(mapped.begin(), mapped.end()) != mapped.end()) return false;
+  // Valence: a node with all three of its hex faces chosen leaves the front and must have
+  // exactly those three faces; any other node keeps faces outside and valence >= 3.
+  for (int local = 0; local < 8; ++local) {
+    const NodeId v = c.map[static_cast<std::size_t>(local)];
+    if (!v.is_valid()) continue;
+    int j = 0;
+    for (const int t : pattern.chosen)
+      if (hex_face_has(t, local)) ++j;
+    const auto d = static_cast<int>(walk_fan(s, v, [](Slot, int) {}));
+    if (j == 3) {
+      if (d != 3) return false;
+    } else if (d <= j || d + 3 - 2 * j < min_valence) {
+      return false;
+    }
+  }
+  // New edges between existing nodes must be new to the front and to the attached hexes.
+  for (const auto& e : kHexEdges) {
+    const NodeId a = c.map[static_cast<std::size_t>(e[0])];
+    const NodeId b = c.map[static_cast<std::size_t>(e[1])];
+    if (!a.is_valid() || !b.is_valid()) continue;
+    bool on_chosen = false;
+    for (const int t : pattern.chosen)
+      if (hex_face_has(t, e[0]) && hex_face_has(t, e[1])) on_chosen = true;
+    if (on_chosen) continue;
+    if (front_edge(s, a, b) || hex_edge_on(s, a, b)) return false;
+  }
+  // New faces on existing nodes only must be new faces.
+  for (int u = 0; u < 6; ++u) {
+    if (std::find(pattern.chosen.begin(), pattern.chosen.end(), u) != pattern.chosen.end())
+      continue;
+    Quad q{};
+    bool all = true;
+    for (int i = 0; i < 4; ++i) {
+      q[static_cast<std::size_t>(i)] = c.map[static_cast<std::size_t>(
+          kHexFaces[static_cast<std::size_t>(u)][static_cast<std::size_t>(i)])];
+      all = all && q[static_cast<std::size_t>(i)].is_valid();
+    }
+    if (all && (front_face_on(s, q) || hex_face_on(s, q))) return false;
+  }
+  return true;
+}
+
+/// A signature of the front (its faces as sorted node sets, sorted), to skip fronts the
+/// search has already seen.
+std::uint64_t signature(const State& s) {
+  std::vector<std::array<std::int32_t, 4>> keys;
+  keys.reserve(s.live);
+  for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    if (s.alive[f] == 0U) continue;
+    std::array<std::int32_t, 4> k{s.faces[f][0].value(), s.faces[f][1].value(),
+                                  s.faces[f][2].value(), s.faces[f][3].value()};
+    std::sort(k.begin(), k.end());
+    keys.push_back(k);
+  }
+  std::sort(keys.begin(), keys.end());
+  std::uint64_t h = 1469598103934665603ULL;  // FNV-1a over the ids
+  for (const auto& k : keys) {
+    for (const std::int32_t v : k) {
+      h ^= static_cast<std::uint32_t>(v);
+      h *= 1099511628211ULL;
+    }
+  }
+  return h;
+}
+
+/// Applies a checked candidate: the hex, its new nodes, the new front faces and their sides.
+void apply(State& s, const Candidate& c) {
+  Hex h{};
+  for (std::size_t local = 0; local < 8; ++local) {
+    h[local] = c.map[local].is_valid() ? c.map[local] : NodeId(s.num_nodes++);
+  }
+  s.node_face.resize(s.num_nodes, kNone);
+  const auto hex_id = static_cast<std::int32_t>(s.hexes.size());
+  s.hexes.push_back(h);
+  const Pattern& p = *c.pattern;
+  const auto chosen = [&](int f) {
+    return std::find(p.chosen.begin(), p.chosen.end(), f) != p.chosen.end();
+  };
+  // New slots for the unchosen faces, reversed (outward from the rest).
+  std::array<Slot, 6> new_slot{};
+  new_slot.fill(kNone);
+  for (int u = 0; u < 6; ++u) {
+    if (chosen(u)) continue;
+    new_slot[static_cast<std::size_t>(u)] = static_cast<Slot>(s.faces.size());
+    s.faces.push_back(reversed(hex_face(h, u)));
+    s.owner.push_back(hex_id);
+    s.alive.push_back(1);
+    s.nbr.insert(s.nbr.end(), 4, kNone);
+    ++s.live;
+  }
+  for (int u = 0; u < 6; ++u) {
+    const Slot ns = new_slot[static_cast<std::size_t>(u)];
+    if (ns == kNone) continue;
+    const Quad q = s.faces[static_cast<std::size_t>(ns)];
+    for (int i = 0; i < 4; ++i) {
+      const NodeId x = q[static_cast<std::size_t>(i)];
+      const NodeId y = q[static_cast<std::size_t>((i + 1) % 4)];
+      // The other hex face on edge {x, y}.
+      for (int t = 0; t < 6; ++t) {
+        if (t == u) continue;
+        const Quad ht = hex_face(h, t);
+        if (corner(ht, x) < 0 || corner(ht, y) < 0) continue;
+        const Slot ts = new_slot[static_cast<std::size_t>(t)];
+        if (ts != kNone) {  // another new face: it holds y -> x
+          const Quad& tq = s.faces[static_cast<std::size_t>(ts)];
+          const int k = corner(tq, y);
+          s.nbr[4 * static_cast<std::size_t>(ns) + static_cast<std::size_t>(i)] = 4 * ts + k;
+        } else {  // a chosen face: it held x -> y; take over its neighbour
+          const Slot cs = c.slot_of[static_cast<std::size_t>(t)];
+          const int k = corner(s.faces[static_cast<std::size_t>(cs)], x);
+          const Slot o = s.nbr[4 * static_cast<std::size_t>(cs) + static_cast<std::size_t>(k)];
+          s.nbr[4 * static_cast<std::size_t>(ns) + static_cast<std::size_t>(i)] = o;
+          s.nbr[static_cast<std::size_t>(o)] = 4 * ns + i;
+        }
+        break;
+      }
+    }
+  }
+  for (const int t : p.chosen) {
+    const Slot cs = c.slot_of[static_cast<std::size_t>(t)];
+    s.alive[static_cast<std::size_t>(cs)] = 0;
+    --s.live;
+    for (const NodeId v : s.faces[static_cast<std::size_t>(cs)]) s.node_face[v.index()] = kNone;
+  }
+  for (int u = 0; u < 6; ++u) {
+    const Slot ns = new_slot[static_cast<std::size_t>(u)];
+    if (ns == kNone) continue;
+    for (const NodeId v : s.faces[static_cast<std::size_t>(ns)]) s.node_face[v.index()] = ns;
+  }
+  s.moves.push_back({p.move, HexId(static_cast<std::size_t>(hex_id)), 0, s.live});
+}
+
+/// Seeds of the candidate moves: the live faces crossed by a self-intersecting loop, nearest
+/// a self-crossing quad first (breadth-first over face adjacency), ties by slot.
+std::vector<Slot> hot_faces(const State& s, Goal goal) {
+  const std::size_t n = s.faces.size();
+  if (goal == Goal::EmptyFront) {
+    std::vector<Slot> all;
+    for (std::size_t f = 0; f < n; ++f)
+      if (s.alive[f] != 0U) all.push_back(static_cast<Slot>(f));
+    return all;
+  }
+  std::vector<std::int32_t> dist(n, -1);
+  std::deque<Slot> queue;
+  for (std::size_t f = 0; f < n; ++f) {
+    if (s.alive[f] != 0U && s.face_loop[2 * f] == s.face_loop[2 * f + 1]) {
+      dist[f] = 0;
+      queue.push_back(static_cast<Slot>(f));
+    }
+  }
+  std::vector<Slot> order;
+  while (!queue.empty()) {
+    const Slot f = queue.front();
+    queue.pop_front();
+    const auto fi = static_cast<std::size_t>(f);
+    const bool hot = s.loop_self[static_cast<std::size_t>(s.face_loop[2 * fi])] != 0U ||
+                     s.loop_self[static_cast<std::size_t>(s.face_loop[2 * fi + 1])] != 0U;
+    if (hot) order.push_back(f);
+    for (int i = 0; i < 4; ++i) {
+      const Slot g = s.nbr[4 * fi + static_cast<std::size_t>(i)] / 4;
+      if (dist[static_cast<std::size_t>(g)] < 0) {
+        dist[static_cast<std::size_t>(g)] = dist[fi] + 1;
+        queue.push_back(g);
+      }
+    }
+  }
+  return order;
+}
+
+class Search {
+ public:
+  Search(const LoopMoveOptions& options, std::size_t input_quads, Goal goal)
+      : options_(options), max_faces_(input_quads + options.max_extra_faces), goal_(goal) {}
+
+  /// The candidate fronts one move away from `s`, best first, at most `keep` of them.
+  std::vector<State> successors(const State& s, std::size_t keep) {
+    std::vector<State> best;
+    std::vector<std::vector<Slot>> seen;
+    std::size_t tried = 0;
+    for (const Slot f : hot_faces(s, goal_)) {
+      if (tried >= options_.max_candidates || exhausted()) break;
+      for (const Pattern& p : patterns()) {
+        for (std::size_t seed = 0; seed < p.chosen.size(); ++seed) {
+          for (int rot = 0; rot < 4; ++rot) {
+            Candidate c;
+            if (!try_candidate(s, p, seed, f, rot, 3, c)) continue;
+            std::vector<Slot> key;
+            for (const int t : p.chosen) key.push_back(c.slot_of[static_cast<std::size_t>(t)]);
+            std::sort(key.begin(), key.end());
+            key.push_back(static_cast<Slot>(p.move));
+            if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
+            seen.push_back(key);
+            if (s.live + 6 - 2 * p.chosen.size() > max_faces_) continue;
+            State next = s;
+            apply(next, c);
+            if (!seen_fronts_.insert(signature(next)).second) continue;
+            evaluate(next, goal_);
+            next.moves.back().self_crossing_quads = self_crossings(next);
+            ++tried;
+            ++evaluations_;
+            work_ += next.faces.size();
+            insert(best, std::move(next), keep);
+          }
+        }
+      }
+    }
+    return best;
+  }
+
+  [[nodiscard]] std::size_t evaluations() const { return evaluations_; }
+  [[nodiscard]] bool exhausted() const {
+    return evaluations_ >= options_.max_evaluations || work_ >= options_.max_work;
+  }
+
+ private:
+  static void insert(std::vector<State>& best, State&& s, std::size_t keep) {
+    const auto pos = std::upper_bound(best.begin(), best.end(), s.score,
+                                      [](const Score& v, const State& b) { return v < b.score; });
+    if (static_cast<std::size_t>(pos - best.begin()) >= keep) return;
+    best.insert(pos, std::move(s));
+    if (best.size() > keep) best.pop_back();
+  }
+
+  const LoopMoveOptions& options_;
+  std::size_t max_faces_;
+  Goal goal_;
+  std::size_t evaluations_ = 0;
+  std::size_t work_ = 0;
+  std::unordered_set<std::uint64_t> seen_fronts_;
+};
+
+State initial_state(const QuadSurface& surface) {
+  State s;
+  s.num_nodes = surface.num_nodes;
+  s.faces = surface.quads;
+  const std::size_t n = surface.quads.size();
+  s.owner.resize(n);
+  for (std::size_t q = 0; q < n; ++q) s.owner[q] = -static_cast<std::int32_t>(q) - 1;
+  s.alive.assign(n, 1);
+  s.live = n;
+  s.nbr.assign(4 * n, kNone);
+  s.node_face.assign(s.num_nodes, kNone);
+  std::unordered_map<std::uint64_t, Slot> directed;
+  directed.reserve(4 * n);
+  const auto key = [](NodeId a, NodeId b) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a.value())) << 32U) |
+           static_cast<std::uint32_t>(b.value());
+  };
+  for (std::size_t q = 0; q < n; ++q) {
+    for (int i = 0; i < 4; ++i) {
+      const NodeId a = s.faces[q][static_cast<std::size_t>(i)];
+      const NodeId b = s.faces[q][static_cast<std::size_t>((i + 1) % 4)];
+      if (!a.is_valid() || a.index() >= s.num_nodes || a == b)
+        throw InvalidInput("untangle_loops: quad q" + std::to_string(q) +
+                           " has a node out of range or a repeated node");
+      if (!directed.emplace(key(a, b), static_cast<Slot>(4 * q + static_cast<std::size_t>(i)))
+               .second) {
+        throw InvalidInput("untangle_loops: edge " + a.str() + "-" + b.str() +
+                           " is used twice in the same direction: the surface must be "
+                           "manifold and consistently oriented");
+      }
+      s.node_face[a.index()] = static_cast<Slot>(q);
+    }
+  }
+  for (std::size_t q = 0; q < n; ++q) {
+    for (int i = 0; i < 4; ++i) {
+      const NodeId a = s.faces[q][static_cast<std::size_t>(i)];
+      const NodeId b = s.faces[q][static_cast<std::size_t>((i + 1) % 4)];
+      const auto it = directed.find(key(b, a));
+      if (it == directed.end()) {
+        throw InvalidInput("untangle_loops: edge " + a.str() + "-" + b.str() + " of quad q" +
+                           std::to_string(q) +
+                           " has no reverse: the surface must be closed and consistently oriented");
+      }
+      s.nbr[4 * q + static_cast<std::size_t>(i)] = it->second;
+    }
+  }
+  evaluate(s);
+  return s;
+}
+
+LoopMoveResult result_of(const State& s, std::size_t num_input_nodes) {
+  LoopMoveResult r;
+  r.num_input_nodes = num_input_nodes;
+  r.hexes.hexes = s.hexes;
+  r.hexes.num_nodes = s.num_nodes;
+  r.front.num_nodes = s.num_nodes;
+  for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    if (s.alive[f] == 0U) continue;
+    r.front.quads.push_back(s.faces[f]);
+    const std::int32_t o = s.owner[f];
+    r.front_hex.push_back(o >= 0 ? o : -1);
+    r.front_input.push_back(o >= 0 ? -1 : -o - 1);
+  }
+  r.moves = s.moves;
+  r.self_crossing_quads_after = std::get<1>(s.score);
+  r.simple = std::get<1>(s.score) == 0;
+  return r;
+}
+
+/// The search loop shared by `untangle_loops` and `fill_front`: greedy while a single move
+/// lowers the score, a beam search when none does; stops at the goal or at a bound.
+void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t input_quads,
+         LoopMoveResult& r) {
+  Search search(options, input_quads, goal);
+  const auto done = [&](const State& s) {
+    return goal == Goal::SimpleLoops ? std::get<1>(s.score) == 0 : s.live == 0;
+  };
+  // The part of the score the beam must lower (the goal's own figures).
+  const auto key = [](const State& s) {
+    return std::make_tuple(std::get<0>(s.score), std::get<1>(s.score));
+  };
+  std::string stop;
+  while (!done(current)) {
+    if (current.moves.size() >= options.max_moves) {
+      stop = "move bound (" + std::to_string(options.max_moves) + " moves) reached";
+      break;
+    }
+    if (search.exhausted()) {
+      stop = "evaluation bound (" + std::to_string(options.max_evaluations) + " moves or " +
+             std::to_string(options.max_work) + " face evaluations) reached";
+      break;
+    }
+    const bool small = current.live <= options.small_front;
+    const std::size_t width = std::max<std::size_t>(
+        1, small ? std::max(options.beam_width, options.small_beam_width) : options.beam_width);
+    const std::size_t depth_bound = std::min(
+        small ? std::max(options.beam_depth, options.small_beam_depth) : options.beam_depth,
+        options.max_moves - current.moves.size());
+    std::vector<State> level = search.successors(current, width);
+    if (!level.empty() && level.front().score < current.score) {
+      current = std::move(level.front());
+      continue;
+    }
+    // No single move helps: look ahead for a lower score.
+    ++r.beam_searches;
+    bool improved = false;
+    for (std::size_t depth = 2; depth <= depth_bound && !level.empty() && !improved; ++depth) {
+      std::vector<State> next;
+      for (const State& s : level) {
+        for (State& t : search.successors(s, width)) {
+          const auto pos =
+              std::upper_bound(next.begin(), next.end(), t.score,
+                               [](const Score& v, const State& b) { return v < b.score; });
+          next.insert(pos, std::move(t));
+          if (next.size() > width) next.pop_back();
+        }
+      }
+      level = std::move(next);
+      if (!level.empty() && key(level.front()) < key(current)) {
+        current = std::move(level.front());
+        improved = true;
+      }
+    }
+    if (!improved && search.exhausted()) {
+      stop = "evaluation bound (" + std::to_string(options.max_evaluations) + " moves or " +
+             std::to_string(options.max_work) + " face evaluations) reached";
+      break;
+    }
+    if (!improved) {
+      stop = "no sequence of up to " + std::to_string(depth_bound) + " moves lowers " +
+             (goal == Goal::SimpleLoops
+                  ? "the self-crossings (" + std::to_string(std::get<1>(current.score)) +
+                        " quads left)"
+                  : "the front (" + std::to_string(current.live) + " faces left)");
+      break;
+    }
+  }
+  r.evaluations += search.evaluations();
+  r.stop_reason = done(current) ? (goal == Goal::SimpleLoops ? "simple" : "empty") : stop;
+}
+
+}  // namespace
+
+LoopMoveResult untangle_loops(const QuadSurface& surface, const LoopMoveOptions& options) {
+  State current = initial_state(surface);
+  const std::size_t before = std::get<1>(current.score);
+  LoopMoveResult stats;
+  run(current, options, Goal::SimpleLoops, surface.num_quads(), stats);
+  LoopMoveResult r = result_of(current, surface.num_nodes);
+  r.self_crossing_quads_before = before;
+  r.evaluations = stats.evaluations;
+  r.beam_searches = stats.beam_searches;
+  r.stop_reason = stats.stop_reason;
+  return r;
+}
+
+LoopMoveResult fill_front(const LoopMoveResult& start, const LoopMoveOptions& options) {
+  State current = initial_state(start.front);
+  for (std::size_t f = 0; f < current.owner.size(); ++f)
+    current.owner[f] = start.front_hex[f] >= 0 ? start.front_hex[f] : -start.front_input[f] - 1;
+  current.hexes = start.hexes.hexes;
+  current.moves = start.moves;
+  evaluate(current, Goal::EmptyFront);
+  LoopMoveResult stats;
+  run(current, options, Goal::EmptyFront, start.front.quads.size(), stats);
+  LoopMoveResult r = result_of(current, start.num_input_nodes);
+  r.self_crossing_quads_before = start.self_crossing_quads_before;
+  r.evaluations = start.evaluations + stats.evaluations;
+  r.beam_searches = start.beam_searches + stats.beam_searches;
+  r.stop_reason = stats.stop_reason;
+  r.simple = current.live == 0;
+  return r;
+}
+
+}  // namespace stcweave::stc

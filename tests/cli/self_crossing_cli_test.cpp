@@ -1,0 +1,57 @@
+// `stcweave mesh` on surfaces whose loops cross themselves: exit codes and the front file.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "stcweave/primal/io.hpp"
+#include "stcweave/stc/loops.hpp"
+#include "support/cli_run.hpp"
+#include "support/quadrangulations.hpp"
+
+namespace stcweave {
+namespace {
+
+std::filesystem::path temp(const std::string& name) {
+  return std::filesystem::temp_directory_path() / ("stcweave_selfx_cli_" + name);
+}
+
+TEST(SelfCrossingCli, AnOddSurfaceIsRefusedForItsParityWithExitCode2) {
+  std::optional<primal::SurfaceMesh> odd;
+  for (std::uint32_t seed = 0; seed < 100 && !odd; ++seed) {
+    auto m = test::random_quadrangulation(seed, 9 + 2 * static_cast<int>(seed % 5), 40);
+    if (m && m->surface.quads.size() % 2 == 1) odd = std::move(m);
+  }
+  ASSERT_TRUE(odd.has_value());
+  const auto in = temp("odd.obj");
+  primal::write_surface(*odd, in);
+  const test::CliRun r = test::run_cli("mesh " + in.string() + " -o " + temp("odd.vtk").string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("odd number"), std::string::npos) << r.out;
+  std::filesystem::remove(in);
+}
+
+TEST(SelfCrossingCli, AGivenUpSearchExitsWith3AndLeavesTheFront) {
+  // Seed 154: 8 quads, every one crossed twice by the same loop; the generated points make no
+  // solid, so only the topology matters here: two moves are not enough.
+  const auto mesh = test::random_quadrangulation(154, 8 + 154 % 14, 40);
+  ASSERT_TRUE(mesh.has_value());
+  const auto in = temp("tangled.obj");
+  const auto front = temp("tangled.front.obj");
+  std::filesystem::remove(front);
+  primal::write_surface(*mesh, in);
+  const test::CliRun r =
+      test::run_cli("mesh " + in.string() + " -o " + temp("tangled.vtk").string() +
+                    " --loop-moves-max 2 --front-on-failure " + front.string());
+  EXPECT_EQ(r.code, 3) << r.out;
+  EXPECT_NE(r.out.find("self-intersecting loops"), std::string::npos) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(front)) << r.out;
+  const test::CliRun off = test::run_cli("mesh " + in.string() + " -o " +
+                                         temp("tangled.vtk").string() + " --no-loop-moves");
+  EXPECT_EQ(off.code, 2) << off.out;
+  EXPECT_NE(off.out.find("crosses itself"), std::string::npos) << off.out;
+  std::filesystem::remove(in);
+  std::filesystem::remove(front);
+}
+
+}  // namespace
+}  // namespace stcweave

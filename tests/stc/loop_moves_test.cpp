@@ -1,0 +1,106 @@
+#include "stcweave/stc/loop_moves.hpp"
+
+#include <gtest/gtest.h>
+
+#include "stcweave/stc/errors.hpp"
+#include "stcweave/stc/loops.hpp"
+#include "stcweave/stc/validate.hpp"
+#include "support/quadrangulations.hpp"
+#include "support/shapes.hpp"
+
+namespace stcweave::stc {
+namespace {
+
+TEST(LoopMoves, BoxesAreFilledByMovesAloneWithTheirStructuredHexes) {
+  for (const auto& [a, b, c] :
+       std::vector<std::array<int, 3>>{{1, 1, 1}, {2, 1, 1}, {3, 1, 1}, {2, 2, 1}, {2, 2, 2}}) {
+    const QuadSurface s = test::box_surface(a, b, c).surface;
+    const LoopMoveResult r = fill_front(untangle_loops(s));
+    ASSERT_TRUE(r.simple) << a << "x" << b << "x" << c << ": " << r.stop_reason;
+    EXPECT_TRUE(r.front.quads.empty());
+    EXPECT_EQ(r.hexes.hexes.size(), static_cast<std::size_t>(a * b * c));
+    const ValidationReport v = validate_hex_complex(r.hexes, &s);
+    EXPECT_TRUE(v.valid) << v.summary();
+  }
+}
+
+TEST(LoopMoves, ASurfaceWithSimpleLoopsIsLeftAsItIs) {
+  const QuadSurface s = test::box_surface(3, 2, 2).surface;
+  const LoopMoveResult r = untangle_loops(s);
+  EXPECT_TRUE(r.simple);
+  EXPECT_EQ(r.stop_reason, "simple");
+  EXPECT_TRUE(r.moves.empty());
+  EXPECT_EQ(r.front.quads, s.quads);
+  EXPECT_EQ(r.front_input.size(), s.quads.size());
+}
+
+TEST(LoopMoves, RefusesAnOpenSurface) {
+  QuadSurface s = test::box_surface(1, 1, 1).surface;
+  s.quads.pop_back();
+  EXPECT_THROW((void)untangle_loops(s), InvalidInput);
+}
+
+// After the moves, on every generated sphere with self-crossing loops: the front is a strong
+// quad surface (closed, oriented, valence >= 3, no repeated face, no two faces on two edges),
+// the attached hexes have 8 distinct nodes each, no face in three hexes, no two hexes sharing
+// two faces, matching face orientations, closed cycles around their interior edges, and the
+// covered input quads plus the front's hex faces as the faces they use once, (loops crossing
+// themselves an odd number of times, self-crossing quads) never grows, and `simple` tells the
+// truth.
+TEST(LoopMoves, MovesKeepTheFrontAndTheAttachedHexesValid) {
+  std::size_t checked = 0, with_moves = 0, simple = 0;
+  LoopMoveOptions options;
+  options.max_evaluations = 5000;
+  for (std::uint32_t seed = 0; seed < 200; ++seed) {
+    const auto mesh = test::random_quadrangulation(seed, 8 + static_cast<int>(seed % 14), 40);
+    if (!mesh || mesh->surface.quads.size() % 2 == 1) continue;
+    const QuadSurface& s = mesh->surface;
+    if (find_loops(s, {.sides = false}).num_self_intersecting() == 0) continue;
+    const LoopMoveResult r = untangle_loops(s, options);
+    ++checked;
+    EXPECT_TRUE(test::is_strong_quadrangulation(r.front)) << "seed " << seed;
+    const LoopSet loops = find_loops(r.front, {.sides = false});
+    const auto odd_loops = [](const LoopSet& set) {
+      std::size_t n = 0;
+      for (const Loop& l : set.loops) n += l.self_crossing_quads.size() % 2;
+      return n;
+    };
+    const LoopSet input_loops = find_loops(s, {.sides = false});
+    EXPECT_LE(std::make_pair(odd_loops(loops), r.self_crossing_quads_after),
+              std::make_pair(odd_loops(input_loops), r.self_crossing_quads_before))
+        << "seed " << seed;
+    EXPECT_EQ(r.simple, loops.num_self_intersecting() == 0) << "seed " << seed;
+    EXPECT_EQ(r.self_crossing_quads_after, loops.num_self_crossing_quads());
+    simple += r.simple ? 1 : 0;
+    if (r.hexes.hexes.empty()) continue;
+    ++with_moves;
+    QuadSurface boundary;
+    boundary.num_nodes = r.hexes.num_nodes;
+    std::vector<bool> on_front(s.quads.size(), false);
+    for (std::size_t q = 0; q < r.front.quads.size(); ++q) {
+      if (r.front_input[q] >= 0) {
+        on_front[static_cast<std::size_t>(r.front_input[q])] = true;
+      } else {
+        boundary.quads.push_back(reversed(r.front.quads[q]));
+      }
+    }
+    for (std::size_t q = 0; q < s.quads.size(); ++q)
+      if (!on_front[q]) boundary.quads.push_back(s.quads[q]);
+    // The attached hexes alone may touch themselves along an edge or at a node (two bumps on
+    // quads sharing an edge): only the whole complex must be a manifold. Every other
+    // invariant holds for them.
+    const ValidationReport v = validate_hex_complex(r.hexes, &boundary);
+    for (const Violation& x : v.violations) {
+      const bool whole_only = x.invariant == Invariant::BoundaryEdgeFan ||
+                              x.invariant == Invariant::VertexLink ||
+                              x.invariant == Invariant::EulerCharacteristic;
+      EXPECT_TRUE(whole_only) << "seed " << seed << ": " << x.name() << " " << x.count;
+    }
+  }
+  EXPECT_GT(checked, 20U);
+  EXPECT_GT(with_moves, 10U);
+  EXPECT_GT(simple, 10U);
+}
+
+}  // namespace
+}  // namespace stcweave::stc
