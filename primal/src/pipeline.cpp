@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "stcweave/primal/cut.hpp"
 #include "stcweave/primal/edge_angles.hpp"
 #include "stcweave/stc/errors.hpp"
 
@@ -33,14 +34,15 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
   stage("diagnose");
   r.diagnosis = diagnose(file);
   require_weavable(r.diagnosis);
-  for (std::size_t c = 0; c < r.diagnosis.genus_per_component.size(); ++c) {
-    const auto& g = r.diagnosis.genus_per_component[c];
-    if (g && *g > 0) {
-      throw Unsupported("component " + std::to_string(c) + " of " + file.path + " has genus " +
-                        std::to_string(*g) +
-                        ": surfaces with handles (genus > 0) are not supported yet; only "
-                        "genus-0 shells can be woven");
-    }
+  // Handles and several shells go through `weave_solids` (cut.hpp); a single genus-0 shell
+  // is woven whole.
+  bool whole = r.diagnosis.components <= 1;
+  for (const auto& g : r.diagnosis.genus_per_component) whole = whole && g && *g == 0;
+  if (r.diagnosis.handles && !r.diagnosis.handles->decided) {
+    throw Unsupported(file.path + ": cannot tell which cycles bound inside the solid (" +
+                      r.diagnosis.handles->undecided_reason +
+                      "), so whether a hex mesh exists is undecided; docs/topology.md lists "
+                      "the assumptions of the test");
   }
   r.surface = surface_of(file, &r.file_nodes);
   r.seconds.diagnose = clock.lap();
@@ -50,8 +52,11 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
   for (std::size_t c = 0; c < r.orientation.nesting_depth.size(); ++c) {
     if (r.orientation.nesting_depth[c] > 0) {
       throw Unsupported("component " + std::to_string(c) + " of " + file.path +
-                        " lies inside another component (nested shells, e.g. a hollow ball): "
-                        "not supported yet; mesh each shell's solid separately");
+                        " lies inside another component (nested shells: a solid with a "
+                        "cavity, e.g. a hollow ball; the inner shell is oriented into the "
+                        "cavity): not supported yet, as such a solid is no ball and needs a cut "
+                        "along an annulus from shell to shell (docs/topology.md); mesh each "
+                        "shell's solid separately");
     }
   }
   r.seconds.orient = clock.lap();
@@ -61,7 +66,11 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
   const std::vector<std::array<double, 4>> angles = options.weave.rules == weave::RuleSet::Extended
                                                         ? dihedral_angles(r.surface)
                                                         : std::vector<std::array<double, 4>>{};
-  r.woven = weave::weave(r.surface.surface, options.weave, angles);
+  if (whole) {
+    r.woven = weave::weave(r.surface.surface, options.weave, angles);
+  } else {
+    r.woven = weave_solids(r.surface, options.weave, options.cut, &r.solids);
+  }
   r.seconds.weave = clock.lap();
 
   stage("validate");

@@ -1,0 +1,467 @@
+#include "stcweave/primal/cut.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <optional>
+#include <tuple>
+
+#include "stcweave/primal/edge_angles.hpp"
+#include "stcweave/primal/handles.hpp"
+#include "stcweave/stc/errors.hpp"
+#include "stcweave/stc/loops.hpp"
+#include "stcweave/stc/surface_topology.hpp"
+#include "stcweave/stc/validate.hpp"
+
+namespace stcweave::primal {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+/// A disc choice: a grid_a x grid_b grid whose boundary walk starts at cycle position `start`.
+struct DiscChoice {
+  int a = 0;
+  int b = 0;
+  std::size_t start = 0;
+  double score = 0.0;
+};
+
+/// Disc choices for a cycle, best first: the four grid corners where the cycle turns most
+/// (sum of turning angles), then the squarest grid, then the smallest start.
+std::vector<DiscChoice> disc_choices(const Points& points, const std::vector<NodeId>& cycle) {
+  const std::size_t len = cycle.size();
+  std::vector<double> turn(len, 0.0);
+  const auto at = [&](std::size_t k) -> Eigen::Vector3d {
+    return points.row(cycle[k % len].value()).transpose();
+  };
+  for (std::size_t k = 0; k < len; ++k) {
+    const Eigen::Vector3d in = (at(k) - at(k + len - 1)).normalized();
+    const Eigen::Vector3d out = (at(k + 1) - at(k)).normalized();
+    turn[k] = std::acos(std::clamp(in.dot(out), -1.0, 1.0));
+  }
+  std::vector<DiscChoice> choices;
+  const int half = static_cast<int>(len / 2);
+  for (int a = 1; a < half; ++a) {
+    const int b = half - a;
+    if (a > b) break;  // (a, b) and (b, a) differ by the start only
+    for (std::size_t s = 0; s < len; ++s) {
+      // a x b and b x a starting at s are the same corners shifted: enumerate both starts.
+      DiscChoice c{a, b, s, 0.0};
+      const std::size_t ua = static_cast<std::size_t>(a);
+      const std::size_t ub = static_cast<std::size_t>(b);
+      c.score = turn[s % len] + turn[(s + ua) % len] + turn[(s + ua + ub) % len] +
+                turn[(s + 2 * ua + ub) % len];
+      choices.push_back(c);
+    }
+  }
+  std::stable_sort(choices.begin(), choices.end(), [](const DiscChoice& p, const DiscChoice& q) {
+    if (std::abs(p.score - q.score) > 1e-9) return p.score > q.score;
+    if (std::abs(p.a - p.b) != std::abs(q.a - q.b))
+      return std::abs(p.a - p.b) < std::abs(q.a - q.b);
+    return p.start < q.start;
+  });
+  // Same corner set reached from two starts (a == b symmetric shifts): keep the first.
+  std::vector<DiscChoice> unique;
+  std::vector<std::vector<std::size_t>> seen;
+  for (const DiscChoice& c : choices) {
+    const std::size_t ua = static_cast<std::size_t>(c.a);
+    const std::size_t ub = static_cast<std::size_t>(c.b);
+    std::vector<std::size_t> corners{c.start % len, (c.start + ua) % len, (c.start + ua + ub) % len,
+                                     (c.start + 2 * ua + ub) % len};
+    std::sort(corners.begin(), corners.end());
+    if (std::find(seen.begin(), seen.end(), corners) != seen.end()) continue;
+    seen.push_back(corners);
+    unique.push_back(c);
+  }
+  return unique;
+}
+
+/// A surface being cut: quads and points over its own node ids, and per node the id of the
+/// final mesh node it stands for.
+struct CutSurface {
+  SurfaceMesh mesh;
+  std::vector<NodeId> final_id;
+};
+
+/// The cut of `s` along `cycle` (node ids of `s`) with the disc `choice`; new disc interior
+/// nodes get final ids from `next_final` on.
+CutSurface cut_along(const CutSurface& s, const std::vector<NodeId>& cycle,
+                     const DiscChoice& choice, std::size_t* next_final) {
+  const stc::QuadSurface& surface = s.mesh.surface;
+  const stc::SurfaceTopology topo = stc::surface_topology(surface);
+  const std::size_t len = cycle.size();
+  const std::size_t n = surface.num_nodes;
+  std::vector<std::size_t> position(n, static_cast<std::size_t>(-1));
+  for (std::size_t k = 0; k < len; ++k) position[cycle[k].index()] = k;
+  const auto is_cycle_edge = [&](NodeId x, NodeId y) {
+    const std::size_t px = position[x.index()];
+    const std::size_t py = position[y.index()];
+    if (px == static_cast<std::size_t>(-1) || py == static_cast<std::size_t>(-1)) return false;
+    return (px + 1) % len == py || (py + 1) % len == px;
+  };
+  // Per cycle node, the quads on the + side (those traversing the outgoing cycle edge
+  // forward, and the fan from there to the incoming cycle edge).
+  std::vector<std::vector<std::size_t>> plus(len);
+  for (std::size_t k = 0; k < len; ++k) {
+    const NodeId v = cycle[k];
+    const NodeId next = cycle[(k + 1) % len];
+    std::size_t quad = static_cast<std::size_t>(-1);
+    int side = -1;
+    for (std::size_t q = 0; q < surface.num_quads() && side < 0; ++q)
+      for (int i = 0; i < 4; ++i)
+        if (surface.quads[q][static_cast<std::size_t>(i)] == v &&
+            surface.quads[q][static_cast<std::size_t>((i + 1) % 4)] == next) {
+          quad = q;
+          side = i;
+          break;
+        }
+    if (side < 0)
+      throw InternalError("cut: cycle edge " + v.str() + "-" + next.str() + " is not an edge");
+    for (std::size_t guard = 0; guard <= surface.num_quads(); ++guard) {
+      plus[k].push_back(quad);
+      // The other side of `quad` at v ends at v: side (i-1), from q[i-1] to v.
+      const int back = (side + 3) % 4;
+      const stc::Quad& qq = surface.quads[quad];
+      if (is_cycle_edge(qq[static_cast<std::size_t>(back)], v)) break;
+      const stc::QuadSide across = topo.neighbour(stc::QuadSide{QuadId(quad), back});
+      quad = across.quad.index();
+      // In the neighbour, v starts side `across.side`.
+      side = across.side;
+    }
+  }
+  CutSurface out;
+  const std::size_t a = static_cast<std::size_t>(choice.a);
+  const std::size_t b = static_cast<std::size_t>(choice.b);
+  const std::size_t interior = (a - 1) * (b - 1);
+  const std::size_t n_new = n + len + 2 * interior;
+  out.mesh.points.resize(static_cast<Eigen::Index>(n_new), 3);
+  out.mesh.points.topRows(static_cast<Eigen::Index>(n)) =
+      s.mesh.points.topRows(static_cast<Eigen::Index>(n));
+  out.final_id = s.final_id;
+  out.final_id.resize(n_new);
+  for (std::size_t k = 0; k < len; ++k) {
+    out.mesh.points.row(static_cast<Eigen::Index>(n + k)) = s.mesh.points.row(cycle[k].value());
+    out.final_id[n + k] = s.final_id[cycle[k].index()];
+  }
+  out.mesh.surface.quads = surface.quads;
+  for (std::size_t k = 0; k < len; ++k)
+    for (std::size_t q : plus[k])
+      for (NodeId& v : out.mesh.surface.quads[q])
+        if (v == cycle[k]) v = NodeId(n + k);
+
+  // The grid: node (i, j), boundary walk (0,0) -> (a,0) -> (a,b) -> (0,b) -> (0,0).
+  const auto walk = [&](std::size_t i, std::size_t j) -> std::optional<std::size_t> {
+    if (j == 0) return i;
+    if (i == a) return a + j;
+    if (j == b) return a + b + (a - i);
+    if (i == 0) return (2 * a + b + (b - j)) % len;
+    return std::nullopt;
+  };
+  const auto cycle_at = [&](std::size_t p) { return (choice.start + p) % len; };
+  const auto boundary_point = [&](std::size_t i, std::size_t j) -> Eigen::RowVector3d {
+    return s.mesh.points.row(cycle[cycle_at(*walk(i, j))].value());
+  };
+  // minus copy: original cycle ids; plus copy: n + k; interior: minus at n+len+t, plus after.
+  const auto node_minus = [&](std::size_t i, std::size_t j) {
+    const auto w = walk(i, j);
+    if (w) return cycle[cycle_at(*w)];
+    return NodeId(n + len + (j - 1) * (a - 1) + (i - 1));
+  };
+  const auto node_plus = [&](std::size_t i, std::size_t j) {
+    const auto w = walk(i, j);
+    if (w) return NodeId(n + cycle_at(*w));
+    return NodeId(n + len + interior + (j - 1) * (a - 1) + (i - 1));
+  };
+  for (std::size_t j = 1; j < b; ++j) {
+    for (std::size_t i = 1; i < a; ++i) {
+      const double u = static_cast<double>(i) / static_cast<double>(a);
+      const double w = static_cast<double>(j) / static_cast<double>(b);
+      const Eigen::RowVector3d p =
+          (1 - w) * boundary_point(i, 0) + w * boundary_point(i, b) +
+          (1 - u) * boundary_point(0, j) + u * boundary_point(a, j) -
+          ((1 - u) * (1 - w) * boundary_point(0, 0) + u * (1 - w) * boundary_point(a, 0) +
+           (1 - u) * w * boundary_point(0, b) + u * w * boundary_point(a, b));
+      const NodeId m = node_minus(i, j);
+      const NodeId pl = node_plus(i, j);
+      out.mesh.points.row(m.value()) = p;
+      out.mesh.points.row(pl.value()) = p;
+      const NodeId f((*next_final)++);
+      out.final_id[m.index()] = f;
+      out.final_id[pl.index()] = f;
+    }
+  }
+  for (std::size_t j = 0; j < b; ++j) {
+    for (std::size_t i = 0; i < a; ++i) {
+      // Minus copy: traverses the cycle forward; plus copy: reversed.
+      out.mesh.surface.quads.push_back(
+          {node_minus(i, j), node_minus(i + 1, j), node_minus(i + 1, j + 1), node_minus(i, j + 1)});
+      out.mesh.surface.quads.push_back(
+          {node_plus(i, j), node_plus(i, j + 1), node_plus(i + 1, j + 1), node_plus(i + 1, j)});
+    }
+  }
+  out.mesh.surface.num_nodes = n_new;
+  return out;
+}
+
+/// The woven STC of a complex: face neighbours by matching faces, boundary faces by matching
+/// the quads of `boundary`.
+std::vector<std::array<weave::DualLink, 6>> dual_of(const stc::HexComplex& complex,
+                                                    const stc::QuadSurface& boundary) {
+  std::map<std::array<NodeId, 4>, std::vector<std::pair<std::int32_t, std::int8_t>>> faces;
+  for (std::size_t h = 0; h < complex.hexes.size(); ++h) {
+    for (int f = 0; f < 6; ++f) {
+      stc::Quad q = stc::hex_face(complex.hexes[h], f);
+      std::sort(q.begin(), q.end());
+      faces[q].emplace_back(static_cast<std::int32_t>(h), static_cast<std::int8_t>(f));
+    }
+  }
+  std::map<std::array<NodeId, 4>, std::int32_t> quads;
+  for (std::size_t q = 0; q < boundary.quads.size(); ++q) {
+    stc::Quad k = boundary.quads[q];
+    std::sort(k.begin(), k.end());
+    quads[k] = static_cast<std::int32_t>(q);
+  }
+  std::vector<std::array<weave::DualLink, 6>> dual(complex.hexes.size());
+  for (const auto& [key, uses] : faces) {
+    if (uses.size() == 2) {
+      for (int s = 0; s < 2; ++s) {
+        const auto& me = uses[static_cast<std::size_t>(s)];
+        const auto& other = uses[static_cast<std::size_t>(1 - s)];
+        dual[static_cast<std::size_t>(me.first)][static_cast<std::size_t>(me.second)] =
+            weave::DualLink{false, other.first, other.second};
+      }
+    } else if (uses.size() == 1) {
+      const auto it = quads.find(key);
+      if (it != quads.end()) {
+        dual[static_cast<std::size_t>(uses[0].first)][static_cast<std::size_t>(uses[0].second)] =
+            weave::DualLink{true, it->second, -1};
+      }
+    }
+  }
+  return dual;
+}
+
+/// A woven ball mapped to final ids.
+struct BallWeave {
+  weave::WeaveResult woven;
+  std::vector<stc::Hex> hexes;  ///< over final ids (interior nodes from the given offset)
+  std::size_t interior = 0;
+};
+
+BallWeave weave_ball(const CutSurface& s, const weave::WeaveOptions& options,
+                     std::size_t first_interior) {
+  BallWeave out;
+  const std::vector<std::array<double, 4>> angles = options.rules == weave::RuleSet::Extended
+                                                        ? dihedral_angles(s.mesh)
+                                                        : std::vector<std::array<double, 4>>{};
+  out.woven = weave::weave(s.mesh.surface, options, angles);
+  const std::size_t inputs = out.woven.num_input_nodes;
+  out.interior = out.woven.complex.num_nodes - inputs;
+  for (const stc::Hex& h : out.woven.complex.hexes) {
+    stc::Hex m{};
+    for (std::size_t i = 0; i < 8; ++i) {
+      m[i] = h[i].index() < inputs ? s.final_id[h[i].index()]
+                                   : NodeId(first_interior + (h[i].index() - inputs));
+    }
+    out.hexes.push_back(m);
+  }
+  return out;
+}
+
+void add_stats(weave::WeaveStats& sum, const weave::WeaveStats& s) {
+  sum.selections += s.selections;
+  sum.shrinks += s.shrinks;
+  sum.failed_shrinks += s.failed_shrinks;
+  sum.seams += s.seams;
+  sum.coincident_glues += s.coincident_glues;
+  sum.crosses += s.crosses;
+  sum.blind_chords += s.blind_chords;
+  sum.blocked_seams += s.blocked_seams;
+  sum.relaxed_preconditions += s.relaxed_preconditions;
+  sum.parallel_merges += s.parallel_merges;
+  sum.nonconvexity_seams += s.nonconvexity_seams;
+  sum.rolled_back_shrinks += s.rolled_back_shrinks;
+}
+
+}  // namespace
+
+weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptions& options,
+                                const CutOptions& cut_options, SolidsReport* report) {
+  SolidsReport local_report;
+  SolidsReport& rep = report != nullptr ? *report : local_report;
+  rep = SolidsReport{};
+  const stc::QuadSurface& surface = mesh.surface;
+  const stc::SurfaceTopology topo = stc::surface_topology(surface);
+  const std::size_t num_components = topo.components.size();
+  rep.solids = num_components;
+
+  weave::WeaveResult result;
+  result.num_input_nodes = surface.num_nodes;
+  std::size_t next_final = surface.num_nodes;  // interior nodes, solid by solid
+
+  for (std::size_t c = 0; c < num_components; ++c) {
+    auto t0 = std::chrono::steady_clock::now();
+    // The solid's own surface, nodes in increasing global order.
+    CutSurface solid;
+    std::vector<NodeId> local(surface.num_nodes, NodeId::invalid());
+    for (std::size_t q = 0; q < surface.num_quads(); ++q) {
+      if (topo.quad_components[q].index() != c) continue;
+      stc::Quad quad = surface.quads[q];
+      solid.mesh.surface.quads.push_back(quad);
+      for (NodeId v : quad) local[v.index()] = NodeId(0);
+    }
+    for (std::size_t v = 0; v < surface.num_nodes; ++v) {
+      if (!local[v].is_valid()) continue;
+      local[v] = NodeId(solid.final_id.size());
+      solid.final_id.push_back(NodeId(v));
+    }
+    for (stc::Quad& q : solid.mesh.surface.quads)
+      for (NodeId& v : q) v = local[v.index()];
+    solid.mesh.surface.num_nodes = solid.final_id.size();
+    solid.mesh.points.resize(static_cast<Eigen::Index>(solid.final_id.size()), 3);
+    for (std::size_t v = 0; v < solid.final_id.size(); ++v)
+      solid.mesh.points.row(static_cast<Eigen::Index>(v)) =
+          mesh.points.row(solid.final_id[v].value());
+
+    const int genus = topo.components[c].genus.value_or(0);
+    std::vector<std::vector<NodeId>> cycles;
+    if (genus > 0) {
+      const HandleDiagnosis h = diagnose_handles(solid.mesh);
+      if (!h.decided)
+        throw Unsupported(ComponentId(c).str() +
+                          ": cannot tell which cycles bound inside the "
+                          "solid (" +
+                          h.undecided_reason + "), so its handles cannot be cut");
+      if (h.handles.size() != static_cast<std::size_t>(genus))
+        throw Unsupported(ComponentId(c).str() + ": " +
+                          std::to_string(genus - static_cast<int>(h.handles.size())) +
+                          " of its handle cycles have no simple representative: cutting them is "
+                          "not supported yet");
+      if (!h.all_even())
+        throw TopologyError(ComponentId(c).str() +
+                            ": a handle cycle has odd length: no hex "
+                            "mesh with this boundary exists");
+      std::vector<char> used(solid.final_id.size(), 0);
+      for (const HandleCycle& hc : h.handles) {
+        for (NodeId v : hc.nodes) {
+          if (used[v.index()] != 0) {
+            throw Unsupported(ComponentId(c).str() + ": its handle cycles share node " +
+                              solid.final_id[v.index()].str() +
+                              ": cutting handles whose cycles touch is not supported yet");
+          }
+          used[v.index()] = 1;
+        }
+        cycles.push_back(hc.nodes);
+      }
+    }
+    rep.cut_seconds += seconds_since(t0);
+
+    // Cut the handles one after the other (the cycles are disjoint, so their node ids stay
+    // valid through the earlier cuts), keeping for each the first disc choice that leads to a
+    // loop-clean cut; the last cut is checked by weaving and gluing.
+    std::optional<BallWeave> ball;
+    std::size_t ball_final_start = next_final;
+    CutSurface current = solid;
+    for (std::size_t k = 0; k < cycles.size(); ++k) {
+      t0 = std::chrono::steady_clock::now();
+      const std::vector<DiscChoice> choices = disc_choices(current.mesh.points, cycles[k]);
+      HandleCut hc;
+      hc.cycle.clear();
+      for (NodeId v : cycles[k]) hc.cycle.push_back(current.final_id[v.index()]);
+      bool done = false;
+      std::string failures;
+      const bool last = k + 1 == cycles.size();
+      for (const DiscChoice& choice : choices) {
+        if (hc.attempts == cut_options.max_disc_attempts) break;
+        ++hc.attempts;
+        auto t1 = std::chrono::steady_clock::now();
+        std::size_t trial_final = next_final;
+        CutSurface cut = cut_along(current, cycles[k], choice, &trial_final);
+        const stc::LoopSet loops = stc::find_loops(cut.mesh.surface, stc::FindLoopsOptions{false});
+        rep.cut_seconds += seconds_since(t1);
+        if (loops.num_self_intersecting() > 0) {
+          failures += "; " + std::to_string(choice.a) + "x" + std::to_string(choice.b) +
+                      " disc from position " + std::to_string(choice.start) +
+                      ": the cut has a self-intersecting loop";
+          continue;
+        }
+        if (!last) {
+          next_final = trial_final;
+          current = std::move(cut);
+          done = true;
+        } else {
+          t1 = std::chrono::steady_clock::now();
+          try {
+            BallWeave w = weave_ball(cut, options, trial_final);
+            rep.weave_seconds += seconds_since(t1);
+            t1 = std::chrono::steady_clock::now();
+            stc::HexComplex glued;
+            glued.hexes = w.hexes;
+            glued.num_nodes = trial_final + w.interior;
+            // Only this solid's nodes matter here: check the glued complex of the solid.
+            const stc::ValidationReport v = stc::validate_hex_complex(glued);
+            rep.glue_seconds += seconds_since(t1);
+            if (!v.valid) {
+              failures += "; " + std::to_string(choice.a) + "x" + std::to_string(choice.b) +
+                          " disc from position " + std::to_string(choice.start) +
+                          ": glued complex invalid (" + v.summary() + ")";
+              continue;
+            }
+            next_final = trial_final;
+            current = std::move(cut);
+            ball = std::move(w);
+            done = true;
+          } catch (const WeaveError& e) {
+            rep.weave_seconds += seconds_since(t1);
+            failures += "; " + std::to_string(choice.a) + "x" + std::to_string(choice.b) +
+                        " disc from position " + std::to_string(choice.start) + ": weave blocked";
+            continue;
+          }
+        }
+        hc.grid_a = choice.a;
+        hc.grid_b = choice.b;
+        break;
+      }
+      if (!done) {
+        std::string cycle;
+        for (std::size_t i = 0; i < hc.cycle.size() && i < 12; ++i)
+          cycle += (i > 0 ? "-" : "") + hc.cycle[i].str();
+        throw Unsupported(ComponentId(c).str() + ": no disc spanning the handle cycle " + cycle +
+                          (hc.cycle.size() > 12 ? "-..." : "") + " (" +
+                          std::to_string(hc.cycle.size()) + " edges) could be woven and glued " +
+                          "after " + std::to_string(hc.attempts) + " tries" +
+                          (failures.size() > 600 ? failures.substr(0, 600) + "..." : failures));
+      }
+      rep.cuts.push_back(std::move(hc));
+    }
+    if (!ball) {
+      auto t1 = std::chrono::steady_clock::now();
+      ball = weave_ball(current, options, next_final);
+      rep.weave_seconds += seconds_since(t1);
+    }
+    (void)ball_final_start;
+    next_final += ball->interior;
+    const std::size_t hex_offset = result.complex.hexes.size();
+    for (const stc::Hex& h : ball->hexes) result.complex.hexes.push_back(h);
+    for (std::int32_t s : ball->woven.hex_shrink) result.hex_shrink.push_back(s);
+    for (const std::string& r : ball->woven.hex_rule) result.hex_rule.push_back(r);
+    add_stats(result.stats, ball->woven.stats);
+    for (weave::TraceEvent e : ball->woven.trace) {
+      if (e.hex.is_valid()) e.hex = HexId(e.hex.index() + hex_offset);
+      result.trace.push_back(std::move(e));
+    }
+  }
+  const auto t2 = std::chrono::steady_clock::now();
+  // Interior nodes were numbered solid by solid (discs first, then the weave's); the weave's
+  // own numbering of a solid follows its disc nodes, so the ids are dense.
+  result.complex.num_nodes = next_final;
+  result.dual = dual_of(result.complex, surface);
+  rep.glue_seconds += seconds_since(t2);
+  return result;
+}
+
+}  // namespace stcweave::primal
