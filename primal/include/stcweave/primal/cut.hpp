@@ -25,7 +25,8 @@ namespace stcweave::primal {
 
 /// Settings of `weave_solids`.
 struct CutOptions {
-  /// Disc choices tried per handle before giving up.
+  /// Disc choices woven per handle before giving up (choices whose cut has a
+  /// self-intersecting loop are discarded without weaving and not counted).
   std::size_t max_disc_attempts = 12;
 };
 
@@ -34,7 +35,7 @@ struct HandleCut {
   std::vector<NodeId> cycle;  ///< surface node ids (of the woven surface)
   int grid_a = 0;             ///< the disc is a grid_a x grid_b grid of quads
   int grid_b = 0;
-  std::size_t attempts = 0;  ///< disc choices tried (the last one was kept)
+  std::size_t attempts = 0;  ///< disc choices tried, loop-checked or woven (the last was kept)
 };
 
 /// What `weave_solids` did.
