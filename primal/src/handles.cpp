@@ -448,11 +448,11 @@ HandleDiagnosis diagnose_handles(const SurfaceMesh& mesh, const HandleOptions& o
   for (std::size_t v = 0; v < n; ++v)
     if (node_component[v] != kNone) used.push_back(v);
   std::vector<std::size_t> roots;
-  if (used.size() <= options.max_roots) {
+  if (used.size() <= options.all_roots_up_to) {
     roots = used;
   } else {
-    for (std::size_t k = 0; k < options.max_roots; ++k)
-      roots.push_back(used[k * used.size() / options.max_roots]);
+    const std::size_t count = std::max<std::size_t>(1, options.sampled_roots);
+    for (std::size_t k = 0; k < count; ++k) roots.push_back(used[k * used.size() / count]);
   }
   struct Candidate {
     std::size_t length;
@@ -461,29 +461,35 @@ HandleDiagnosis diagnose_handles(const SurfaceMesh& mesh, const HandleOptions& o
     std::size_t w;
   };
   std::map<Bits, Candidate> best;
+  // Flat per-node class prefixes and one tree reused for every root (only the visited nodes
+  // are reset): no allocation per node and root.
+  std::vector<std::uint64_t> prefix(n * words, 0);
+  Tree t = empty_tree(n);
+  Bits x(words, 0);
   for (std::size_t r = 0; r < roots.size(); ++r) {
-    Tree t = empty_tree(n);
+    for (std::size_t v : t.order) t.depth[v] = kNone;
+    t.order.clear();
     grow_tree(g, roots[r], t);
-    std::vector<Bits> prefix(n);
     for (std::size_t v : t.order) {
+      std::uint64_t* pv = &prefix[v * words];
       if (t.parent[v] == kNone) {
-        prefix[v] = Bits(words, 0);
+        std::fill(pv, pv + words, 0);
       } else {
-        prefix[v] = prefix[t.parent[v]];
-        xor_into(prefix[v], mask[t.parent_edge[v]]);
+        const std::uint64_t* pp = &prefix[t.parent[v] * words];
+        const Bits& m = mask[t.parent_edge[v]];
+        for (std::size_t k = 0; k < words; ++k) pv[k] = pp[k] ^ m[k];
       }
     }
     for (std::size_t v : t.order) {
       for (const auto& [w, e] : g.adj[v]) {
         if (w < v || t.parent_edge[w] == e || t.parent_edge[v] == e) continue;
-        Bits x = prefix[v];
-        xor_into(x, prefix[w]);
-        xor_into(x, mask[e]);
+        for (std::size_t k = 0; k < words; ++k)
+          x[k] = prefix[v * words + k] ^ prefix[w * words + k] ^ mask[e][k];
         if (is_zero(x) || !bounds_inside(x)) continue;
         const Candidate c{cycle_length(t, v, w), r, v, w};
         auto it = best.find(x);
         if (it == best.end()) {
-          best.emplace(std::move(x), c);
+          best.emplace(x, c);
         } else if (std::tie(c.length, c.root, c.u, c.w) <
                    std::tie(it->second.length, it->second.root, it->second.u, it->second.w)) {
           it->second = c;

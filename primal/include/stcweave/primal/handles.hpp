@@ -28,8 +28,9 @@ struct HandleOptions {
   /// Projection directions tried before giving up when a projection is degenerate.
   int max_projections = 8;
   /// Breadth-first roots used to look for short handle cycles: every node when the surface
-  /// has at most this many nodes, else this many nodes evenly spaced by id.
-  std::size_t max_roots = 1500;
+  /// has at most `all_roots_up_to` nodes, else `sampled_roots` nodes evenly spaced by id.
+  std::size_t all_roots_up_to = 1500;
+  std::size_t sampled_roots = 300;
 };
 
 /// A cycle of the surface's edges that bounds inside the solid (zero in H1(solid; Z2)) but
