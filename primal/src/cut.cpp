@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <numeric>
 #include <optional>
@@ -103,9 +104,11 @@ struct CutSurface {
 
 /// The cut of `s` along `cycle` (node ids of `s`) with the disc `choice`; new disc interior
 /// nodes get final ids from `next_final` on.
-CutSurface cut_along(const CutSurface& s, const std::vector<NodeId>& cycle,
-                     const DiscChoice& choice, std::size_t* next_final) {
-  const stc::QuadSurface& surface = s.mesh.surface;
+/// Per node of `cycle` (a simple cycle of `surface`'s edges), the quads on its + side: the
+/// quad traversing the outgoing cycle edge forward, and the fan from it round the node to the
+/// incoming cycle edge.
+std::vector<std::vector<std::size_t>> plus_fans(const stc::QuadSurface& surface,
+                                                const std::vector<NodeId>& cycle) {
   const stc::SurfaceTopology topo = stc::surface_topology(surface);
   const std::size_t len = cycle.size();
   const std::size_t n = surface.num_nodes;
@@ -147,6 +150,15 @@ CutSurface cut_along(const CutSurface& s, const std::vector<NodeId>& cycle,
       side = across.side;
     }
   }
+  return plus;
+}
+
+CutSurface cut_along(const CutSurface& s, const std::vector<NodeId>& cycle,
+                     const DiscChoice& choice, std::size_t* next_final) {
+  const stc::QuadSurface& surface = s.mesh.surface;
+  const std::size_t len = cycle.size();
+  const std::size_t n = surface.num_nodes;
+  const std::vector<std::vector<std::size_t>> plus = plus_fans(surface, cycle);
   // The disc over its own ids: a grid (a+1) x (b+1), node (i, j) at i + (a+1) j, whose
   // boundary walk (0,0) -> (a,0) -> (a,b) -> (0,b) -> (0,0) follows the cycle from `start`;
   // with a ring, that grid is an inner block and one layer of quads joins its boundary to the
@@ -346,6 +358,72 @@ void add_stats(weave::WeaveStats& sum, const weave::WeaveStats& s) {
   sum.rolled_back_shrinks += s.rolled_back_shrinks;
 }
 
+/// The cut of `s` along an annulus of one layer of quads between two node-disjoint cycles of
+/// equal length on different shells: quad p = (outer[p], outer[p+1], inner[p+1], inner[p]).
+/// Both cycles' nodes are duplicated and the annulus added once facing each side; no new
+/// interior node.
+CutSurface cut_annulus(const CutSurface& s, const std::vector<NodeId>& outer,
+                       const std::vector<NodeId>& inner) {
+  const stc::QuadSurface& surface = s.mesh.surface;
+  const std::size_t len = outer.size();
+  const std::size_t n = surface.num_nodes;
+  // The annulus traverses the outer cycle forward and the inner one backward.
+  std::vector<NodeId> inner_forward(inner.rbegin(), inner.rend());
+  const auto plus_outer = plus_fans(surface, outer);
+  const auto plus_inner = plus_fans(surface, inner_forward);
+  CutSurface out;
+  out.mesh.points.resize(static_cast<Eigen::Index>(n + 2 * len), 3);
+  out.mesh.points.topRows(static_cast<Eigen::Index>(n)) =
+      s.mesh.points.topRows(static_cast<Eigen::Index>(n));
+  out.final_id = s.final_id;
+  out.final_id.resize(n + 2 * len);
+  std::vector<NodeId> copy(n, NodeId::invalid());
+  for (std::size_t k = 0; k < len; ++k) {
+    copy[outer[k].index()] = NodeId(n + k);
+    copy[inner[k].index()] = NodeId(n + len + k);
+  }
+  for (std::size_t v = 0; v < n; ++v) {
+    if (!copy[v].is_valid()) continue;
+    out.mesh.points.row(copy[v].value()) = s.mesh.points.row(static_cast<Eigen::Index>(v));
+    out.final_id[copy[v].index()] = s.final_id[v];
+  }
+  out.mesh.surface.quads = surface.quads;
+  const auto apply = [&](const std::vector<NodeId>& cycle,
+                         const std::vector<std::vector<std::size_t>>& plus) {
+    for (std::size_t k = 0; k < cycle.size(); ++k)
+      for (std::size_t q : plus[k])
+        for (NodeId& v : out.mesh.surface.quads[q])
+          if (v == cycle[k]) v = copy[cycle[k].index()];
+  };
+  apply(outer, plus_outer);
+  apply(inner_forward, plus_inner);
+  for (std::size_t p = 0; p < len; ++p) {
+    const std::size_t p1 = (p + 1) % len;
+    out.mesh.surface.quads.push_back({outer[p], outer[p1], inner[p1], inner[p]});
+    out.mesh.surface.quads.push_back({copy[outer[p].index()], copy[inner[p].index()],
+                                      copy[inner[p1].index()], copy[outer[p1].index()]});
+  }
+  out.mesh.surface.num_nodes = n + 2 * len;
+  return out;
+}
+
+/// Whether the ray from `o` along `dir` crosses triangle (a, b, c) at t > 0.
+bool ray_hits(const Eigen::Vector3d& o, const Eigen::Vector3d& dir, const Eigen::Vector3d& a,
+              const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  const Eigen::Vector3d e1 = b - a;
+  const Eigen::Vector3d e2 = c - a;
+  const Eigen::Vector3d p = dir.cross(e2);
+  const double det = e1.dot(p);
+  if (std::abs(det) < 1e-300) return false;
+  const Eigen::Vector3d t = o - a;
+  const double u = t.dot(p) / det;
+  if (u < 0.0 || u > 1.0) return false;
+  const Eigen::Vector3d q = t.cross(e1);
+  const double v = dir.dot(q) / det;
+  if (v < 0.0 || u + v > 1.0) return false;
+  return e2.dot(q) / det > 0.0;
+}
+
 }  // namespace
 
 weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptions& options,
@@ -356,19 +434,66 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
   const stc::QuadSurface& surface = mesh.surface;
   const stc::SurfaceTopology topo = stc::surface_topology(surface);
   const std::size_t num_components = topo.components.size();
-  rep.solids = num_components;
 
   weave::WeaveResult result;
   result.num_input_nodes = surface.num_nodes;
   std::size_t next_final = surface.num_nodes;  // interior nodes, solid by solid
 
+  // Cavities: shells of negative signed volume (orient_outward points them into the
+  // cavity), each given to the smallest positive shell that encloses it (ray parity).
+  const auto point = [&](NodeId v) -> Eigen::Vector3d {
+    return mesh.points.row(v.value()).transpose();
+  };
+  std::vector<double> volume(num_components, 0.0);
+  for (std::size_t q = 0; q < surface.num_quads(); ++q) {
+    const stc::Quad& quad = surface.quads[q];
+    volume[topo.quad_components[q].index()] +=
+        (point(quad[0]).dot(point(quad[1]).cross(point(quad[2]))) +
+         point(quad[0]).dot(point(quad[2]).cross(point(quad[3])))) /
+        6.0;
+  }
+  std::vector<std::vector<std::size_t>> cavities(num_components);
   for (std::size_t c = 0; c < num_components; ++c) {
+    if (volume[c] >= 0.0) continue;
+    std::size_t first_quad = 0;
+    while (topo.quad_components[first_quad].index() != c) ++first_quad;
+    const Eigen::Vector3d o = point(surface.quads[first_quad][0]);
+    const Eigen::Vector3d dir = Eigen::Vector3d(0.5390117, 0.6421423, 0.5449871).normalized();
+    std::size_t owner = num_components;
+    for (std::size_t other = 0; other < num_components; ++other) {
+      if (volume[other] <= 0.0) continue;
+      std::size_t hits = 0;
+      for (std::size_t q = 0; q < surface.num_quads(); ++q) {
+        if (topo.quad_components[q].index() != other) continue;
+        const stc::Quad& quad = surface.quads[q];
+        hits += ray_hits(o, dir, point(quad[0]), point(quad[1]), point(quad[2])) ? 1 : 0;
+        hits += ray_hits(o, dir, point(quad[0]), point(quad[2]), point(quad[3])) ? 1 : 0;
+      }
+      if (hits % 2 == 1 && (owner == num_components || volume[other] < volume[owner]))
+        owner = other;
+    }
+    if (owner == num_components) {
+      throw Unsupported(ComponentId(c).str() +
+                        " is oriented as a cavity but no shell encloses it: check the input");
+    }
+    cavities[owner].push_back(c);
+  }
+  rep.solids = 0;
+  for (std::size_t c = 0; c < num_components; ++c) rep.solids += volume[c] >= 0.0 ? 1 : 0;
+
+  for (std::size_t c = 0; c < num_components; ++c) {
+    if (volume[c] < 0.0) continue;
     auto t0 = std::chrono::steady_clock::now();
-    // The solid's own surface, nodes in increasing global order.
+    // The solid's own surface (its shell and its cavities), nodes in increasing global order.
+    std::vector<char> in_solid(num_components, 0);
+    in_solid[c] = 1;
+    for (std::size_t k : cavities[c]) in_solid[k] = 1;
     CutSurface solid;
     std::vector<NodeId> local(surface.num_nodes, NodeId::invalid());
+    std::vector<std::size_t> solid_quad_component;
     for (std::size_t q = 0; q < surface.num_quads(); ++q) {
-      if (topo.quad_components[q].index() != c) continue;
+      if (in_solid[topo.quad_components[q].index()] == 0) continue;
+      solid_quad_component.push_back(topo.quad_components[q].index());
       stc::Quad quad = surface.quads[q];
       solid.mesh.surface.quads.push_back(quad);
       for (NodeId v : quad) local[v.index()] = NodeId(0);
@@ -385,6 +510,115 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
     for (std::size_t v = 0; v < solid.final_id.size(); ++v)
       solid.mesh.points.row(static_cast<Eigen::Index>(v)) =
           mesh.points.row(solid.final_id[v].value());
+
+    if (!cavities[c].empty()) {
+      // A solid with cavities: one annulus (a ladder of 4 quads) per cavity, from the
+      // boundary of a cavity quad to that of the nearest quad of the outer shell, makes it
+      // balls; they are woven together and glued back.
+      for (std::size_t k : cavities[c])
+        if (topo.components[k].genus.value_or(0) > 0)
+          throw Unsupported(ComponentId(k).str() + ": a cavity with handles is not supported yet");
+      if (topo.components[c].genus.value_or(0) > 0)
+        throw Unsupported(ComponentId(c).str() +
+                          ": a solid with both handles and cavities is not supported yet");
+      CutSurface current = solid;
+      std::vector<char> used(solid.final_id.size(), 0);
+      const auto centroid = [&](std::size_t q) {
+        Eigen::Vector3d m = Eigen::Vector3d::Zero();
+        for (NodeId v : solid.mesh.surface.quads[q])
+          m += solid.mesh.points.row(v.value()).transpose();
+        return Eigen::Vector3d(m / 4.0);
+      };
+      const auto free_quad = [&](std::size_t q) {
+        return std::none_of(solid.mesh.surface.quads[q].begin(), solid.mesh.surface.quads[q].end(),
+                            [&](NodeId v) { return used[v.index()] != 0; });
+      };
+      for (std::size_t k : cavities[c]) {
+        double best = INFINITY;
+        std::size_t qi = 0;
+        std::size_t qo = 0;
+        for (std::size_t a = 0; a < solid_quad_component.size(); ++a) {
+          if (solid_quad_component[a] != k || !free_quad(a)) continue;
+          const Eigen::Vector3d ca = centroid(a);
+          for (std::size_t b = 0; b < solid_quad_component.size(); ++b) {
+            if (solid_quad_component[b] != c || !free_quad(b)) continue;
+            const double d = (centroid(b) - ca).squaredNorm();
+            if (d < best) {
+              best = d;
+              qi = a;
+              qo = b;
+            }
+          }
+        }
+        if (!std::isfinite(best))
+          throw Unsupported(ComponentId(k).str() + ": no free quad pair to join the cavity");
+        const stc::Quad& outer_quad = solid.mesh.surface.quads[qo];
+        const stc::Quad& inner_quad = solid.mesh.surface.quads[qi];
+        std::vector<NodeId> outer(outer_quad.begin(), outer_quad.end());
+        std::vector<NodeId> inner;
+        double best_pairing = INFINITY;
+        for (int shift = 0; shift < 4; ++shift) {
+          for (int dir : {1, -1}) {
+            std::vector<NodeId> candidate;
+            double cost = 0.0;
+            for (int p = 0; p < 4; ++p) {
+              const NodeId v =
+                  inner_quad[static_cast<std::size_t>(((shift + dir * p) % 4 + 4) % 4)];
+              candidate.push_back(v);
+              cost += (solid.mesh.points.row(v.value()) -
+                       solid.mesh.points.row(outer[static_cast<std::size_t>(p)].value()))
+                          .squaredNorm();
+            }
+            if (cost < best_pairing) {
+              best_pairing = cost;
+              inner = candidate;
+            }
+          }
+        }
+        for (NodeId v : outer) used[v.index()] = 1;
+        for (NodeId v : inner) used[v.index()] = 1;
+        current = cut_annulus(current, outer, inner);
+        HandleCut hc;
+        for (NodeId v : outer) hc.cycle.push_back(solid.final_id[v.index()]);
+        for (NodeId v : inner) hc.cycle.push_back(solid.final_id[v.index()]);
+        hc.grid_a = 1;
+        hc.grid_b = 4;  // an annulus of 1 x 4 quads
+        hc.attempts = 1;
+        rep.cuts.push_back(hc);
+      }
+      rep.cut_seconds += seconds_since(t0);
+      const stc::LoopSet loops =
+          stc::find_loops(current.mesh.surface, stc::FindLoopsOptions{false});
+      if (loops.num_self_intersecting() > 0)
+        throw Unsupported(ComponentId(c).str() +
+                          ": cutting its cavities off gives a surface with a self-intersecting "
+                          "loop: not supported yet");
+      auto t1 = std::chrono::steady_clock::now();
+      BallWeave w = weave_ball(current, options, next_final);
+      rep.weave_seconds += seconds_since(t1);
+      t1 = std::chrono::steady_clock::now();
+      stc::HexComplex glued;
+      glued.hexes = w.hexes;
+      glued.num_nodes = next_final + w.interior;
+      const stc::ValidationReport v = stc::validate_hex_complex(glued);
+      rep.glue_seconds += seconds_since(t1);
+      if (!v.valid)
+        throw Unsupported(ComponentId(c).str() +
+                          ": the cavity cut woven and glued back breaks "
+                          "an invariant (" +
+                          v.summary().substr(0, 200) + ")");
+      next_final += w.interior;
+      const std::size_t hex_offset = result.complex.hexes.size();
+      for (const stc::Hex& h : w.hexes) result.complex.hexes.push_back(h);
+      for (std::int32_t sh : w.woven.hex_shrink) result.hex_shrink.push_back(sh);
+      for (const std::string& r : w.woven.hex_rule) result.hex_rule.push_back(r);
+      add_stats(result.stats, w.woven.stats);
+      for (weave::TraceEvent e : w.woven.trace) {
+        if (e.hex.is_valid()) e.hex = HexId(e.hex.index() + hex_offset);
+        result.trace.push_back(std::move(e));
+      }
+      continue;
+    }
 
     const int genus = topo.components[c].genus.value_or(0);
     std::vector<std::vector<NodeId>> cycles;
@@ -420,92 +654,98 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
     rep.cut_seconds += seconds_since(t0);
 
     // Cut the handles one after the other (the cycles are disjoint, so their node ids stay
-    // valid through the earlier cuts), keeping for each the first disc choice that leads to a
-    // loop-clean cut; the last cut is checked by weaving and gluing.
+    // valid through the earlier cuts): a depth-first search over the disc choices of each
+    // cut, pruned by loop cleanliness after every cut, where the last cut is checked by
+    // weaving and gluing; within a budget of loop checks and of weaves.
     std::optional<BallWeave> ball;
-    std::size_t ball_final_start = next_final;
-    CutSurface current = solid;
-    for (std::size_t k = 0; k < cycles.size(); ++k) {
-      t0 = std::chrono::steady_clock::now();
+    std::vector<HandleCut> cuts(cycles.size());
+    std::size_t loop_checks = 0;
+    std::size_t weaves = 0;
+    std::string failures;
+    const auto note = [&](const DiscChoice& choice, std::size_t k, const std::string& why) {
+      if (failures.size() > 600) return;
+      failures += "; cut " + std::to_string(k + 1) + ", " + std::to_string(choice.a) + "x" +
+                  std::to_string(choice.b) + (choice.ring ? " O-grid" : "") +
+                  " disc from position " + std::to_string(choice.start) + ": " + why;
+    };
+    const std::function<bool(const CutSurface&, std::size_t, std::size_t)> search =
+        [&](const CutSurface& current, std::size_t k, std::size_t final_start) -> bool {
+      if (weaves >= cut_options.max_disc_attempts || loop_checks >= cut_options.max_loop_checks)
+        return false;
+      auto t1 = std::chrono::steady_clock::now();
       const std::vector<DiscChoice> choices = disc_choices(current.mesh.points, cycles[k]);
-      HandleCut hc;
+      rep.cut_seconds += seconds_since(t1);
+      HandleCut& hc = cuts[k];
       hc.cycle.clear();
       for (NodeId v : cycles[k]) hc.cycle.push_back(current.final_id[v.index()]);
-      bool done = false;
-      std::string failures;
       const bool last = k + 1 == cycles.size();
-      std::size_t weaves = 0;
       for (const DiscChoice& choice : choices) {
-        if (weaves == cut_options.max_disc_attempts) break;
+        if (weaves >= cut_options.max_disc_attempts || loop_checks >= cut_options.max_loop_checks)
+          return false;
         ++hc.attempts;
-        auto t1 = std::chrono::steady_clock::now();
-        std::size_t trial_final = next_final;
+        t1 = std::chrono::steady_clock::now();
+        std::size_t trial_final = final_start;
         CutSurface cut = cut_along(current, cycles[k], choice, &trial_final);
         const stc::LoopSet loops = stc::find_loops(cut.mesh.surface, stc::FindLoopsOptions{false});
+        ++loop_checks;
         rep.cut_seconds += seconds_since(t1);
         if (loops.num_self_intersecting() > 0) {
-          if (failures.size() > 400) continue;
-          failures += "; " + std::to_string(choice.a) + "x" + std::to_string(choice.b) +
-                      " disc from position " + std::to_string(choice.start) +
-                      ": the cut has a self-intersecting loop";
+          note(choice, k, "the cut has a self-intersecting loop");
           continue;
-        }
-        if (!last) {
-          next_final = trial_final;
-          current = std::move(cut);
-          done = true;
-        } else {
-          t1 = std::chrono::steady_clock::now();
-          ++weaves;
-          try {
-            BallWeave w = weave_ball(cut, options, trial_final);
-            rep.weave_seconds += seconds_since(t1);
-            t1 = std::chrono::steady_clock::now();
-            stc::HexComplex glued;
-            glued.hexes = w.hexes;
-            glued.num_nodes = trial_final + w.interior;
-            // Only this solid's nodes matter here: check the glued complex of the solid.
-            const stc::ValidationReport v = stc::validate_hex_complex(glued);
-            rep.glue_seconds += seconds_since(t1);
-            if (!v.valid) {
-              failures += "; " + std::to_string(choice.a) + "x" + std::to_string(choice.b) +
-                          " disc from position " + std::to_string(choice.start) +
-                          ": glued complex invalid (" + v.summary() + ")";
-              continue;
-            }
-            next_final = trial_final;
-            current = std::move(cut);
-            ball = std::move(w);
-            done = true;
-          } catch (const WeaveError& e) {
-            rep.weave_seconds += seconds_since(t1);
-            failures += "; " + std::to_string(choice.a) + "x" + std::to_string(choice.b) +
-                        " disc from position " + std::to_string(choice.start) + ": weave blocked";
-            continue;
-          }
         }
         hc.grid_a = choice.a;
         hc.grid_b = choice.b;
-        break;
+        if (!last) {
+          if (search(cut, k + 1, trial_final)) return true;
+          continue;
+        }
+        t1 = std::chrono::steady_clock::now();
+        ++weaves;
+        try {
+          BallWeave w = weave_ball(cut, options, trial_final);
+          rep.weave_seconds += seconds_since(t1);
+          t1 = std::chrono::steady_clock::now();
+          stc::HexComplex glued;
+          glued.hexes = w.hexes;
+          glued.num_nodes = trial_final + w.interior;
+          const stc::ValidationReport v = stc::validate_hex_complex(glued);
+          rep.glue_seconds += seconds_since(t1);
+          if (!v.valid) {
+            note(choice, k, "glued complex invalid (" + v.summary().substr(0, 120) + ")");
+            continue;
+          }
+          next_final = trial_final;
+          ball = std::move(w);
+          return true;
+        } catch (const WeaveError&) {
+          rep.weave_seconds += seconds_since(t1);
+          note(choice, k, "weave blocked");
+        }
       }
-      if (!done) {
-        std::string cycle;
-        for (std::size_t i = 0; i < hc.cycle.size() && i < 12; ++i)
-          cycle += (i > 0 ? "-" : "") + hc.cycle[i].str();
-        throw Unsupported(ComponentId(c).str() + ": no disc spanning the handle cycle " + cycle +
-                          (hc.cycle.size() > 12 ? "-..." : "") + " (" +
-                          std::to_string(hc.cycle.size()) + " edges) could be woven and glued " +
-                          "after " + std::to_string(hc.attempts) + " tries" +
-                          (failures.size() > 600 ? failures.substr(0, 600) + "..." : failures));
-      }
-      rep.cuts.push_back(std::move(hc));
-    }
-    if (!ball) {
+      return false;
+    };
+    if (cycles.empty()) {
       auto t1 = std::chrono::steady_clock::now();
-      ball = weave_ball(current, options, next_final);
+      ball = weave_ball(solid, options, next_final);
       rep.weave_seconds += seconds_since(t1);
+    } else if (!search(solid, 0, next_final)) {
+      std::string names;
+      for (std::size_t k = 0; k < cycles.size(); ++k) {
+        names += (k > 0 ? ", " : "");
+        for (std::size_t i = 0; i < cycles[k].size() && i < 8; ++i)
+          names += (i > 0 ? "-" : "") + solid.final_id[cycles[k][i].index()].str();
+        names +=
+            (cycles[k].size() > 8 ? "-... (" : " (") + std::to_string(cycles[k].size()) + " edges)";
+      }
+      throw Unsupported(ComponentId(c).str() +
+                        ": no choice of discs spanning the handle "
+                        "cycles " +
+                        names + " could be woven and glued (" + std::to_string(loop_checks) +
+                        " cuts tried, " + std::to_string(weaves) + " woven" +
+                        (failures.size() > 600 ? failures.substr(0, 600) + "..." : failures) +
+                        "); docs/topology.md says what the disc choice needs");
     }
-    (void)ball_final_start;
+    for (HandleCut& hc : cuts) rep.cuts.push_back(std::move(hc));
     next_final += ball->interior;
     const std::size_t hex_offset = result.complex.hexes.size();
     for (const stc::Hex& h : ball->hexes) result.complex.hexes.push_back(h);

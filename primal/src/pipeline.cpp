@@ -50,14 +50,13 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
   stage("orient");
   r.orientation = orient_outward(r.surface);
   for (std::size_t c = 0; c < r.orientation.nesting_depth.size(); ++c) {
-    if (r.orientation.nesting_depth[c] > 0) {
+    if (r.orientation.nesting_depth[c] > 1) {
       throw Unsupported("component " + std::to_string(c) + " of " + file.path +
-                        " lies inside another component (nested shells: a solid with a "
-                        "cavity, e.g. a hollow ball; the inner shell is oriented into the "
-                        "cavity): not supported yet, as such a solid is no ball and needs a cut "
-                        "along an annulus from shell to shell (docs/topology.md); mesh each "
-                        "shell's solid separately");
+                        " lies inside a cavity of another shell (nesting depth " +
+                        std::to_string(r.orientation.nesting_depth[c]) +
+                        "): not supported yet; mesh the solids separately");
     }
+    if (r.orientation.nesting_depth[c] == 1) whole = false;  // a cavity: weave_solids
   }
   r.seconds.orient = clock.lap();
 

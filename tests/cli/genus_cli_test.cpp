@@ -1,5 +1,6 @@
 // Solids with handles through the command line: the odd-handle refusal (exit code 2, the
-// cycle named), the handle report of `loops`, and a ring meshed by cutting and gluing.
+// cycle named), the handle report of `loops`, a ring meshed by cutting and gluing, a hollow
+// cube meshed by an annulus cut, and a shell inside a cavity refused.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -67,8 +68,8 @@ TEST_F(GenusCli, RingIsMeshedIntoEightHexes) {
   EXPECT_EQ(check.code, 0) << check.out;
 }
 
-TEST_F(GenusCli, HollowCubeIsRefusedNamingTheCavity) {
-  // 3 x 3 x 3 voxels minus the centre one: an outer and an inner shell.
+TEST_F(GenusCli, HollowCubeIsCutAlongAnAnnulusAndMeshed) {
+  // 3 x 3 x 3 voxels minus the centre one: an outer and an inner shell (a cavity).
   std::vector<std::array<int, 3>> cells;
   for (int k = 0; k < 3; ++k)
     for (int j = 0; j < 3; ++j)
@@ -76,10 +77,36 @@ TEST_F(GenusCli, HollowCubeIsRefusedNamingTheCavity) {
         if (!(i == 1 && j == 1 && k == 1)) cells.push_back({i, j, k});
   const fs::path in = dir_ / "hollow.obj";
   stcweave::primal::write_surface(stcweave::test::voxel_surface(cells), in);
+  const fs::path out = dir_ / "hollow.vtk";
+  const fs::path report = dir_ / "hollow.json";
+  const auto r = stcweave::test::run_cli("mesh " + in.string() + " -o " + out.string() +
+                                         " --report " + report.string() + " --fail-on-inverted");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(stcweave::test::slurp(report));
+  EXPECT_EQ(j["valid"], true);
+  EXPECT_EQ(j["solids"]["solids"], 1);
+  EXPECT_EQ(j["solids"]["cuts"].size(), 1u);
+  const auto check =
+      stcweave::test::run_cli("check " + out.string() + " --boundary " + in.string());
+  EXPECT_EQ(check.code, 0) << check.out;
+}
+
+TEST_F(GenusCli, ShellInsideACavityIsRefused) {
+  // A cube in the cavity of a hollow cube: nesting depth 2.
+  std::vector<std::array<int, 3>> cells;
+  for (int k = 0; k < 5; ++k)
+    for (int j = 0; j < 5; ++j)
+      for (int i = 0; i < 5; ++i)
+        if (i == 0 || i == 4 || j == 0 || j == 4 || k == 0 || k == 4 ||
+            (i == 2 && j == 2 && k == 2))
+          cells.push_back({i, j, k});
+  const fs::path in = dir_ / "nested.obj";
+  stcweave::primal::write_surface(stcweave::test::voxel_surface(cells), in);
   const auto r =
       stcweave::test::run_cli("mesh " + in.string() + " -o " + (dir_ / "o.vtk").string());
   EXPECT_EQ(r.code, 2) << r.out;
-  EXPECT_NE(r.out.find("cavity"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("inside a cavity"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir_ / "o.vtk"));
 }
 
 }  // namespace

@@ -138,7 +138,7 @@ TEST(Pipeline, DisjointSolidsAreWovenSeparatelyAndCombined) {
   EXPECT_EQ(r.quality.inverted, 0u);
 }
 
-TEST(Pipeline, NestedShellsAreUnsupported) {
+TEST(Pipeline, HollowBoxIsMeshedThroughAnAnnulusCut) {
   const SurfaceMesh outer = test::box_surface(3, 3, 3);
   const SurfaceMesh inner = test::box_surface(1, 1, 1);
   SurfaceMesh both = outer;
@@ -151,12 +151,12 @@ TEST(Pipeline, NestedShellsAreUnsupported) {
     both.surface.quads.push_back(q);
   }
   both.surface.num_nodes = static_cast<std::size_t>(n0 + 8);
-  try {
-    (void)mesh_file(file_of(both, "hollow"));
-    FAIL() << "expected Unsupported";
-  } catch (const Unsupported& e) {
-    EXPECT_NE(std::string(e.what()).find("nested"), std::string::npos) << e.what();
-  }
+  const MeshResult r = mesh_file(file_of(both, "hollow"));
+  EXPECT_TRUE(r.validation.valid) << r.validation.summary();
+  EXPECT_TRUE(r.validation.boundary_compared);
+  EXPECT_EQ(r.solids.solids, 1u);
+  EXPECT_EQ(r.solids.cuts.size(), 1u);
+  EXPECT_EQ(r.quality.inverted, 0u);
 }
 
 TEST(Pipeline, OddQuadCountIsATopologyError) {

@@ -28,6 +28,9 @@ struct CutOptions {
   /// Disc choices woven per handle before giving up (choices whose cut has a
   /// self-intersecting loop are discarded without weaving and not counted).
   std::size_t max_disc_attempts = 12;
+  /// Cut surfaces whose loops are checked per solid (over every handle's disc choices, in a
+  /// depth-first search) before giving up.
+  std::size_t max_loop_checks = 2000;
 };
 
 /// One handle cut: where, with which disc, after how many attempts.
