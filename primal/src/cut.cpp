@@ -128,14 +128,16 @@ std::vector<std::vector<std::size_t>> plus_fans(const stc::QuadSurface& surface,
     const NodeId next = cycle[(k + 1) % len];
     std::size_t quad = static_cast<std::size_t>(-1);
     int side = -1;
-    for (std::size_t q = 0; q < surface.num_quads() && side < 0; ++q)
-      for (int i = 0; i < 4; ++i)
+    for (std::size_t q = 0; q < surface.num_quads() && side < 0; ++q) {
+      for (int i = 0; i < 4; ++i) {
         if (surface.quads[q][static_cast<std::size_t>(i)] == v &&
             surface.quads[q][static_cast<std::size_t>((i + 1) % 4)] == next) {
           quad = q;
           side = i;
           break;
         }
+      }
+    }
     if (side < 0)
       throw InternalError("cut: cycle edge " + v.str() + "-" + next.str() + " is not an edge");
     for (std::size_t guard = 0; guard <= surface.num_quads(); ++guard) {
@@ -222,10 +224,12 @@ CutSurface cut_along(const CutSurface& s, const std::vector<NodeId>& cycle,
       disc_quads.push_back({rim[p], rim[p1], grid_disc[walk_node[p1]], grid_disc[walk_node[p]]});
     }
   }
-  for (std::size_t j = 0; j < b; ++j)
-    for (std::size_t i = 0; i < a; ++i)
+  for (std::size_t j = 0; j < b; ++j) {
+    for (std::size_t i = 0; i < a; ++i) {
       disc_quads.push_back({grid_disc[gid(i, j)], grid_disc[gid(i + 1, j)],
                             grid_disc[gid(i + 1, j + 1)], grid_disc[gid(i, j + 1)]});
+    }
+  }
   std::vector<std::size_t> interior_index(disc_walk.size(), 0);
   std::size_t interior = 0;
   for (std::size_t d = 0; d < disc_walk.size(); ++d)
@@ -243,10 +247,13 @@ CutSurface cut_along(const CutSurface& s, const std::vector<NodeId>& cycle,
     out.final_id[n + k] = s.final_id[cycle[k].index()];
   }
   out.mesh.surface.quads = surface.quads;
-  for (std::size_t k = 0; k < len; ++k)
-    for (std::size_t q : plus[k])
-      for (NodeId& v : out.mesh.surface.quads[q])
+  for (std::size_t k = 0; k < len; ++k) {
+    for (std::size_t q : plus[k]) {
+      for (NodeId& v : out.mesh.surface.quads[q]) {
         if (v == cycle[k]) v = NodeId(n + k);
+      }
+    }
+  }
   // Minus copy: the cycle's own ids; plus copy: n + k; interior: minus at n + len + t, plus
   // at n + len + interior + t, both standing for one new final node.
   const auto node_minus = [&](std::size_t d) {
@@ -390,10 +397,13 @@ CutSurface cut_annulus(const CutSurface& s, const std::vector<NodeId>& outer,
   out.mesh.surface.quads = surface.quads;
   const auto apply = [&](const std::vector<NodeId>& cycle,
                          const std::vector<std::vector<std::size_t>>& plus) {
-    for (std::size_t k = 0; k < cycle.size(); ++k)
-      for (std::size_t q : plus[k])
-        for (NodeId& v : out.mesh.surface.quads[q])
+    for (std::size_t k = 0; k < cycle.size(); ++k) {
+      for (std::size_t q : plus[k]) {
+        for (NodeId& v : out.mesh.surface.quads[q]) {
           if (v == cycle[k]) v = copy[cycle[k].index()];
+        }
+      }
+    }
   };
   apply(outer, plus_outer);
   apply(inner_forward, plus_inner);
@@ -518,9 +528,10 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
       for (std::size_t k : cavities[c])
         if (topo.components[k].genus.value_or(0) > 0)
           throw Unsupported(ComponentId(k).str() + ": a cavity with handles is not supported yet");
-      if (topo.components[c].genus.value_or(0) > 0)
+      if (topo.components[c].genus.value_or(0) > 0) {
         throw Unsupported(ComponentId(c).str() +
                           ": a solid with both handles and cavities is not supported yet");
+      }
       CutSurface current = solid;
       std::vector<char> used(solid.final_id.size(), 0);
       const auto centroid = [&](std::size_t q) {
@@ -589,10 +600,11 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
       rep.cut_seconds += seconds_since(t0);
       const stc::LoopSet loops =
           stc::find_loops(current.mesh.surface, stc::FindLoopsOptions{false});
-      if (loops.num_self_intersecting() > 0)
+      if (loops.num_self_intersecting() > 0) {
         throw Unsupported(ComponentId(c).str() +
                           ": cutting its cavities off gives a surface with a self-intersecting "
                           "loop: not supported yet");
+      }
       auto t1 = std::chrono::steady_clock::now();
       BallWeave w = weave_ball(current, options, next_final);
       rep.weave_seconds += seconds_since(t1);
@@ -602,11 +614,12 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
       glued.num_nodes = next_final + w.interior;
       const stc::ValidationReport v = stc::validate_hex_complex(glued);
       rep.glue_seconds += seconds_since(t1);
-      if (!v.valid)
+      if (!v.valid) {
         throw Unsupported(ComponentId(c).str() +
                           ": the cavity cut woven and glued back breaks "
                           "an invariant (" +
                           v.summary().substr(0, 200) + ")");
+      }
       next_final += w.interior;
       const std::size_t hex_offset = result.complex.hexes.size();
       for (const stc::Hex& h : w.hexes) result.complex.hexes.push_back(h);
@@ -624,20 +637,23 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
     std::vector<std::vector<NodeId>> cycles;
     if (genus > 0) {
       const HandleDiagnosis h = diagnose_handles(solid.mesh);
-      if (!h.decided)
+      if (!h.decided) {
         throw Unsupported(ComponentId(c).str() +
                           ": cannot tell which cycles bound inside the "
                           "solid (" +
                           h.undecided_reason + "), so its handles cannot be cut");
-      if (h.handles.size() != static_cast<std::size_t>(genus))
+      }
+      if (h.handles.size() != static_cast<std::size_t>(genus)) {
         throw Unsupported(ComponentId(c).str() + ": " +
                           std::to_string(genus - static_cast<int>(h.handles.size())) +
                           " of its handle cycles have no simple representative: cutting them is "
                           "not supported yet");
-      if (!h.all_even())
+      }
+      if (!h.all_even()) {
         throw TopologyError(ComponentId(c).str() +
                             ": a handle cycle has odd length: no hex "
                             "mesh with this boundary exists");
+      }
       std::vector<char> used(solid.final_id.size(), 0);
       for (const HandleCycle& hc : h.handles) {
         for (NodeId v : hc.nodes) {

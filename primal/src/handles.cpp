@@ -399,7 +399,7 @@ HandleDiagnosis diagnose_handles(const SurfaceMesh& mesh, const HandleOptions& o
 
   // Linking matrix mod 2 in a generic projection, retried along other directions when
   // degenerate.
-  static const std::array<Eigen::Vector3d, 8> kDirections = {
+  static const std::array<Eigen::Vector3d, 8> directions = {
       Eigen::Vector3d(0.5390117, 0.6421423, 0.5449871), Eigen::Vector3d(-0.3127, 0.8315, 0.2290),
       Eigen::Vector3d(0.7071, -0.1945, 0.6311),         Eigen::Vector3d(0.1123, 0.2789, -0.9537),
       Eigen::Vector3d(-0.8611, -0.3377, 0.3801),        Eigen::Vector3d(0.4242, -0.8743, -0.2361),
@@ -407,10 +407,10 @@ HandleDiagnosis diagnose_handles(const SurfaceMesh& mesh, const HandleOptions& o
   const double tol = 1e-11 * (scale > 0 ? scale : 1.0);
   std::vector<Bits> rows;
   bool ok = false;
-  const int tries = std::clamp(options.max_projections, 1, static_cast<int>(kDirections.size()));
+  const int tries = std::clamp(options.max_projections, 1, static_cast<int>(directions.size()));
   for (int attempt = 0; attempt < tries && !ok; ++attempt) {
     ++out.projections_tried;
-    const Eigen::Vector3d dir = kDirections[static_cast<std::size_t>(attempt)].normalized();
+    const Eigen::Vector3d dir = directions[static_cast<std::size_t>(attempt)].normalized();
     ok = true;
     rows.assign(num_gen, Bits(words, 0));
     for (std::size_t i = 0; i < num_gen && ok; ++i)
@@ -498,6 +498,7 @@ HandleDiagnosis diagnose_handles(const SurfaceMesh& mesh, const HandleOptions& o
     }
   }
   std::vector<std::pair<Candidate, Bits>> sorted;
+  sorted.reserve(best.size());
   for (const auto& [x, c] : best) sorted.emplace_back(c, x);
   std::sort(sorted.begin(), sorted.end(), [](const auto& p, const auto& q) {
     return std::tie(p.first.length, p.first.root, p.first.u, p.first.w) <
