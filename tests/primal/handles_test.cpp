@@ -129,3 +129,20 @@ TEST(Handles, GenusZeroHasNoHandleDiagnosis) {
 
 }  // namespace
 }  // namespace stcweave::primal
+
+namespace stcweave::primal {
+namespace {
+
+TEST(Handles, FoldedFanAtTheTreeRootIsUndecided) {
+  // Node 0 (the root of the homology basis' tree, so on its cycles) pulled through the tube
+  // to the far side: its quads face opposite ways and no push-off direction exists there.
+  SurfaceMesh torus = test::torus_surface(4, 6, 3.0, 1.0);
+  torus.points.row(0) = Eigen::RowVector3d(3.0 - 1.5, 0.0, 0.0);
+  const HandleDiagnosis h = diagnose_handles(torus);
+  EXPECT_FALSE(h.decided);
+  EXPECT_NE(h.undecided_reason.find("face too many ways"), std::string::npos) << h.undecided_reason;
+  EXPECT_FALSE(h.all_even());
+}
+
+}  // namespace
+}  // namespace stcweave::primal

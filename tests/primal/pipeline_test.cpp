@@ -175,3 +175,36 @@ TEST(Pipeline, CheckModeKeepsTheFrontValidOnTheRhombicDodecahedron) {
 
 }  // namespace
 }  // namespace stcweave::primal
+
+namespace stcweave::primal {
+namespace {
+
+TEST(Pipeline, HandlesAndACavityTogetherAreUnsupported) {
+  // A torus (tube radius 1) with a small cubic cavity inside its tube.
+  const SurfaceMesh torus = test::torus_surface(8, 12, 3.0, 1.0);
+  SurfaceMesh cavity = test::box_surface(1, 1, 1, 0.4, 0.4, 0.4);
+  cavity = test::reversed_surface(test::translated(cavity, {2.8, -0.2, -0.2}));
+  try {
+    (void)mesh_file(file_of(test::merged_surfaces({torus, cavity}), "torus with cavity"));
+    FAIL() << "expected Unsupported";
+  } catch (const Unsupported& e) {
+    EXPECT_NE(std::string(e.what()).find("both handles and cavities"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(Pipeline, UndecidedHandlesAreRefused) {
+  SurfaceMesh torus = test::torus_surface(4, 6, 3.0, 1.0);
+  torus.points.row(0) = Eigen::RowVector3d(3.0 - 1.5, 0.0, 0.0);
+  try {
+    (void)mesh_file(file_of(torus, "folded"));
+    FAIL() << "expected Unsupported";
+  } catch (const Unsupported& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot tell which cycles bound inside"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace stcweave::primal
