@@ -736,6 +736,11 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
         } catch (const WeaveError&) {
           rep.weave_seconds += seconds_since(t1);
           note(choice, k, "weave blocked");
+        } catch (const InvalidInput& e) {
+          // The weave refused the cut surface as a front (a bug of the cut, or a pinch):
+          // another choice may do.
+          rep.weave_seconds += seconds_since(t1);
+          note(choice, k, std::string("the weave refused the cut surface: ") + e.what());
         }
       }
       return false;
