@@ -635,6 +635,7 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
 
     const int genus = topo.components[c].genus.value_or(0);
     std::vector<std::vector<NodeId>> cycles;
+    std::vector<std::vector<std::vector<NodeId>>> fallbacks;
     if (genus > 0) {
       const HandleDiagnosis h = diagnose_handles(solid.mesh);
       if (!h.decided) {
@@ -666,6 +667,22 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
         }
         cycles.push_back(hc.nodes);
       }
+      // Fallbacks: one handle's cycle replaced by another of its class, when disjoint from
+      // the other handles' cycles.
+      for (std::size_t k = 0; k < h.alternatives.size(); ++k) {
+        for (const HandleCycle& alt : h.alternatives[k]) {
+          std::vector<char> other(solid.final_id.size(), 0);
+          for (std::size_t j = 0; j < cycles.size(); ++j)
+            if (j != k)
+              for (NodeId v : cycles[j]) other[v.index()] = 1;
+          if (std::any_of(alt.nodes.begin(), alt.nodes.end(),
+                          [&](NodeId v) { return other[v.index()] != 0; }))
+            continue;
+          std::vector<std::vector<NodeId>> set = cycles;
+          set[k] = alt.nodes;
+          fallbacks.push_back(std::move(set));
+        }
+      }
     }
     rep.cut_seconds += seconds_since(t0);
 
@@ -676,6 +693,7 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
     std::optional<BallWeave> ball;
     std::vector<HandleCut> cuts(cycles.size());
     std::size_t loop_checks = 0;
+    std::size_t self_intersecting_cuts = 0;
     std::size_t weaves = 0;
     std::string failures;
     const auto note = [&](const DiscChoice& choice, std::size_t k, const std::string& why) {
@@ -706,7 +724,7 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
         ++loop_checks;
         rep.cut_seconds += seconds_since(t1);
         if (loops.num_self_intersecting() > 0) {
-          note(choice, k, "the cut has a self-intersecting loop");
+          ++self_intersecting_cuts;
           continue;
         }
         hc.grid_a = choice.a;
@@ -749,7 +767,13 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
       auto t1 = std::chrono::steady_clock::now();
       ball = weave_ball(solid, options, next_final);
       rep.weave_seconds += seconds_since(t1);
-    } else if (!search(solid, 0, next_final)) {
+    } else if (const auto primary = cycles;
+               !search(solid, 0, next_final) &&
+               !std::any_of(fallbacks.begin(), fallbacks.end(), [&](const auto& set) {
+                 cycles = set;
+                 return search(solid, 0, next_final);
+               })) {
+      cycles = primary;
       std::string names;
       for (std::size_t k = 0; k < cycles.size(); ++k) {
         names += (k > 0 ? ", " : "");
@@ -762,7 +786,8 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
                         ": no choice of discs spanning the handle "
                         "cycles " +
                         names + " could be woven and glued (" + std::to_string(loop_checks) +
-                        " cuts tried, " + std::to_string(weaves) + " woven" +
+                        " cuts tried, " + std::to_string(self_intersecting_cuts) +
+                        " with a self-intersecting loop, " + std::to_string(weaves) + " woven" +
                         (failures.size() > 600 ? failures.substr(0, 600) + "..." : failures) +
                         "); docs/topology.md says what the disc choice needs");
     }

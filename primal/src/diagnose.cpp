@@ -267,6 +267,9 @@ SurfaceDiagnosis diagnose(const MeshFile& file) {
     HandleDiagnosis h = diagnose_handles(oriented);
     for (HandleCycle& c : h.handles)
       for (NodeId& v : c.nodes) v = file_nodes[v.index()];
+    for (auto& list : h.alternatives)
+      for (HandleCycle& c : list)
+        for (NodeId& v : c.nodes) v = file_nodes[v.index()];
     d.handles = std::move(h);
   }
   return d;

@@ -51,6 +51,9 @@ struct Tree {
 
 constexpr std::size_t kNone = static_cast<std::size_t>(-1);
 
+/// Per class, how many roots' best cycles are kept as alternative representatives.
+constexpr std::size_t kAlternativePool = 32;
+
 void grow_tree(const Graph& g, std::size_t root, Tree& t) {
   t.parent[root] = kNone;
   t.parent_edge[root] = kNone;
@@ -461,6 +464,9 @@ HandleDiagnosis diagnose_handles(const SurfaceMesh& mesh, const HandleOptions& o
     std::size_t w;
   };
   std::map<Bits, Candidate> best;
+  // Per class, each root's best candidate (for alternative representatives).
+  std::map<Bits, std::vector<Candidate>> per_root;
+  std::map<Bits, Candidate> root_best;
   // Flat per-node class prefixes and one tree reused for every root (only the visited nodes
   // are reset): no allocation per node and root.
   std::vector<std::uint64_t> prefix(n * words, 0);
@@ -469,6 +475,7 @@ HandleDiagnosis diagnose_handles(const SurfaceMesh& mesh, const HandleOptions& o
   for (std::size_t r = 0; r < roots.size(); ++r) {
     for (std::size_t v : t.order) t.depth[v] = kNone;
     t.order.clear();
+    root_best.clear();
     grow_tree(g, roots[r], t);
     for (std::size_t v : t.order) {
       std::uint64_t* pv = &prefix[v * words];
@@ -487,6 +494,13 @@ HandleDiagnosis diagnose_handles(const SurfaceMesh& mesh, const HandleOptions& o
           x[k] = prefix[v * words + k] ^ prefix[w * words + k] ^ mask[e][k];
         if (is_zero(x) || !bounds_inside(x)) continue;
         const Candidate c{cycle_length(t, v, w), r, v, w};
+        auto rb = root_best.find(x);
+        if (rb == root_best.end()) {
+          root_best.emplace(x, c);
+        } else if (std::tie(c.length, c.u, c.w) <
+                   std::tie(rb->second.length, rb->second.u, rb->second.w)) {
+          rb->second = c;
+        }
         auto it = best.find(x);
         if (it == best.end()) {
           best.emplace(x, c);
@@ -495,6 +509,14 @@ HandleDiagnosis diagnose_handles(const SurfaceMesh& mesh, const HandleOptions& o
           it->second = c;
         }
       }
+    }
+    for (const auto& [cls, c] : root_best) {
+      auto& list = per_root[cls];
+      list.push_back(c);
+      std::sort(list.begin(), list.end(), [](const Candidate& p, const Candidate& q) {
+        return std::tie(p.length, p.root, p.u, p.w) < std::tie(q.length, q.root, q.u, q.w);
+      });
+      if (list.size() > kAlternativePool) list.pop_back();
     }
   }
   std::vector<std::pair<Candidate, Bits>> sorted;
@@ -517,6 +539,24 @@ HandleDiagnosis diagnose_handles(const SurfaceMesh& mesh, const HandleOptions& o
     h.component = ComponentId(node_component[cycle.front()]);
     for (std::size_t v : cycle) h.nodes.push_back(NodeId(v));
     if (!h.is_even() && out.odd_handle < 0) out.odd_handle = static_cast<int>(out.handles.size());
+    // Other simple cycles of the same class (distinct node sets), shortest first.
+    std::vector<HandleCycle> others;
+    std::vector<std::vector<NodeId>> seen{h.nodes};
+    std::sort(seen.back().begin(), seen.back().end());
+    for (const Candidate& a : per_root[x]) {
+      if (others.size() == options.alternatives) break;
+      Tree ta = empty_tree(n);
+      grow_tree(g, roots[a.root], ta);
+      HandleCycle alt;
+      alt.component = h.component;
+      for (std::size_t v : tree_cycle(ta, a.u, a.w)) alt.nodes.push_back(NodeId(v));
+      std::vector<NodeId> key = alt.nodes;
+      std::sort(key.begin(), key.end());
+      if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
+      seen.push_back(std::move(key));
+      others.push_back(std::move(alt));
+    }
+    out.alternatives.push_back(std::move(others));
     out.handles.push_back(std::move(h));
   }
   // Basis vectors of the kernel that no single fundamental cycle represents.

@@ -31,6 +31,9 @@ struct HandleOptions {
   /// has at most `all_roots_up_to` nodes, else `sampled_roots` nodes evenly spaced by id.
   std::size_t all_roots_up_to = 1500;
   std::size_t sampled_roots = 300;
+  /// Other simple cycles kept per handle (same class, distinct node sets, shortest first):
+  /// `weave_solids` tries them when no disc spans the first one well.
+  std::size_t alternatives = 6;
 };
 
 /// A cycle of the surface's edges that bounds inside the solid (zero in H1(solid; Z2)) but
@@ -53,6 +56,8 @@ struct HandleDiagnosis {
   /// A basis of the cycles that bound inside, as short simple cycles (g of them when every
   /// basis vector has a single-component representative among the candidates).
   std::vector<HandleCycle> handles;
+  /// Per handle, other simple cycles of the same homology class, shortest first.
+  std::vector<std::vector<HandleCycle>> alternatives;
   /// Basis vectors without a simple representative (cycles spread over several components,
   /// e.g. the solid between two nested tori): their edge count (its parity is what counts).
   std::vector<std::size_t> combined_lengths;
