@@ -249,10 +249,11 @@ int run_mesh(const MeshArgs& a) {
   {
     // Shells woven separately and handle cuts (issue 12); `weave` seconds above include them.
     nlohmann::json cuts = nlohmann::json::array();
-    for (const primal::HandleCut& c : r.solids.cuts)
+    for (const primal::HandleCut& c : r.solids.cuts) {
       cuts.push_back({{"cycle_edges", c.cycle.size()},
                       {"disc", std::to_string(c.grid_a) + "x" + std::to_string(c.grid_b)},
                       {"attempts", c.attempts}});
+    }
     report["solids"] = {{"solids", r.solids.solids},
                         {"cuts", cuts},
                         {"cut_seconds", r.solids.cut_seconds},
