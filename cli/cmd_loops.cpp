@@ -75,6 +75,31 @@ void print_report(const primal::SurfaceDiagnosis& d, std::ostream& out) {
   } else {
     out << "loops: undefined (non-manifold edges)\n";
   }
+  if (d.handles) {
+    const primal::HandleDiagnosis& h = *d.handles;
+    if (!h.decided) {
+      out << "handles: undecided (" << h.undecided_reason << ")\n";
+    } else {
+      out << "handles: " << h.genus << " (cycles that bound inside the solid, by linking "
+          << "numbers; " << (h.all_even() ? "all even" : "one is odd: no hex mesh exists") << ")\n";
+      for (const primal::HandleCycle& c : h.handles) {
+        out << "  " << c.component << ": " << c.length() << " edges ("
+            << (c.is_even() ? "even" : "odd") << "): ";
+        constexpr std::size_t kShown = 24;
+        if (c.length() <= kShown) {
+          out << primal::cycle_name(c);
+        } else {
+          primal::HandleCycle first = c;
+          first.nodes.resize(kShown);
+          out << primal::cycle_name(first) << "-...";
+        }
+        out << "\n";
+      }
+      for (std::size_t len : h.combined_lengths)
+        out << "  over several shells: " << len << " edges (" << (len % 2 == 0 ? "even" : "odd")
+            << ")\n";
+    }
+  }
   try {
     primal::require_weavable(d);
     out << "weavable: yes\n";
@@ -92,6 +117,7 @@ Action add_loops_command(CLI::App& app) {
       "Diagnose a quad surface (or the boundary of a hex mesh) and its loops: quads, nodes, "
       "components, closed, manifold, orientation, Euler characteristic, genus, loops "
       "(count, longest, self-intersecting ones with the quads where they cross themselves), "
+      "handles (per handle a cycle that bounds inside the solid, with its length), "
       "open and non-manifold edges, coincident nodes, and whether the surface can be woven. "
       "Exit code 0 whatever the diagnosis (2 when the file cannot be read).");
   cmd->add_option("FILE", options->file, "Mesh file (obj, off, vtk, vtu, msh, mesh, mfem, inp)")

@@ -354,6 +354,20 @@ int run_mesh(const MeshArgs& a) {
                        {"write", write_seconds},
                        {"total", r.seconds.total() + stc_seconds + write_seconds}};
 
+  {
+    // Shells woven separately and handle cuts (issue 12); `weave` seconds above include them.
+    nlohmann::json cuts = nlohmann::json::array();
+    for (const primal::HandleCut& c : r.solids.cuts) {
+      cuts.push_back({{"cycle_edges", c.cycle.size()},
+                      {"disc", std::to_string(c.grid_a) + "x" + std::to_string(c.grid_b)},
+                      {"attempts", c.attempts}});
+    }
+    report["solids"] = {{"solids", r.solids.solids},
+                        {"cuts", cuts},
+                        {"cut_seconds", r.solids.cut_seconds},
+                        {"ball_weave_seconds", r.solids.weave_seconds},
+                        {"glue_seconds", r.solids.glue_seconds}};
+  }
   if (!a.report.empty()) write_text_atomically(a.report, report.dump(1) + "\n");
   if (!a.trace.empty()) write_text_atomically(a.trace, *trace_text);
   if (!a.quiet) {

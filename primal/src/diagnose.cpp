@@ -257,6 +257,21 @@ SurfaceDiagnosis diagnose(const MeshFile& file) {
   }
   d.nonfinite_nodes = d.sites.nonfinite_nodes.size();
   d.coincident_nodes = count_coincident(file.points, finite);
+
+  // Handles: which cycles bound inside the solid (needs the embedding, oriented outward).
+  if (d.genus && *d.genus > 0 && d.closed && d.manifold && topo.is_orientable() &&
+      d.nonfinite_nodes == 0 && d.degenerate_quads == 0) {
+    std::vector<NodeId> file_nodes;
+    SurfaceMesh oriented = surface_of(file, &file_nodes);
+    orient_outward(oriented);
+    HandleDiagnosis h = diagnose_handles(oriented);
+    for (HandleCycle& c : h.handles)
+      for (NodeId& v : c.nodes) v = file_nodes[v.index()];
+    for (auto& list : h.alternatives)
+      for (HandleCycle& c : list)
+        for (NodeId& v : c.nodes) v = file_nodes[v.index()];
+    d.handles = std::move(h);
+  }
   return d;
 }
 
@@ -302,6 +317,25 @@ nlohmann::json to_json(const SurfaceDiagnosis& d) {
     self.push_back({{"loop", s.loop.value()}, {"length", s.length}, {"quads", quads}});
   }
   j["self_intersections"] = self;
+  if (d.handles) {
+    nlohmann::json handles = nlohmann::json::array();
+    for (const HandleCycle& c : d.handles->handles) {
+      nlohmann::json nodes = nlohmann::json::array();
+      for (NodeId v : c.nodes) nodes.push_back(v.value());
+      handles.push_back({{"component", c.component.value()},
+                         {"length", c.length()},
+                         {"even", c.is_even()},
+                         {"nodes", nodes}});
+    }
+    j["handles"] = {{"decided", d.handles->decided},
+                    {"undecided_reason", d.handles->undecided_reason},
+                    {"cycles", handles},
+                    {"combined_lengths", d.handles->combined_lengths},
+                    {"projections_tried", d.handles->projections_tried},
+                    {"all_even", d.handles->all_even()}};
+  } else {
+    j["handles"] = nullptr;
+  }
   try {
     require_weavable(d);
     j["weavable"] = true;
@@ -397,6 +431,24 @@ void require_weavable(const SurfaceDiagnosis& d, bool allow_self_intersecting_lo
                         " quads, an odd number: no hex mesh can have that boundary (6 x hexes "
                         "= 2 x inner faces + boundary quads); re-mesh the surface with an even "
                         "number of quads (e.g. split every quad into four)");
+  }
+  if (d.handles && d.handles->decided && !d.handles->all_even()) {
+    const HandleDiagnosis& h = *d.handles;
+    if (h.odd_handle >= 0) {
+      const HandleCycle& c = h.handles[static_cast<std::size_t>(h.odd_handle)];
+      throw TopologyError(at + "no hex mesh with this boundary exists: the cycle " + cycle_name(c) +
+                          " has " + std::to_string(c.length()) +
+                          " edges and bounds a surface inside the solid (it goes round a "
+                          "handle of " +
+                          c.component.str() +
+                          "), and every cycle bounding inside a hex mesh has an even length "
+                          "(Erickson 2014); re-mesh the surface so that the cycles around "
+                          "each handle have an even number of edges");
+    }
+    throw TopologyError(at +
+                        "no hex mesh with this boundary exists: a cycle of odd length, spread "
+                        "over several shells, bounds a surface inside the solid (Erickson "
+                        "2014); re-mesh the surface so that such cycles are even");
   }
   if (!allow_self_intersecting_loops && !d.sites.self_intersecting_loops.empty()) {
     const SelfIntersection& first = d.sites.self_intersecting_loops.front();

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "stcweave/primal/cut.hpp"
 #include "stcweave/primal/edge_angles.hpp"
 #include "stcweave/primal/pillow.hpp"
 #include "stcweave/stc/errors.hpp"
@@ -34,14 +35,16 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
   stage("diagnose");
   r.diagnosis = diagnose(file);
   require_weavable(r.diagnosis, options.self_crossing_moves);
-  for (std::size_t c = 0; c < r.diagnosis.genus_per_component.size(); ++c) {
-    const auto& g = r.diagnosis.genus_per_component[c];
-    if (g && *g > 0) {
-      throw Unsupported("component " + std::to_string(c) + " of " + file.path + " has genus " +
-                        std::to_string(*g) +
-                        ": surfaces with handles (genus > 0) are not supported yet; only "
-                        "genus-0 shells can be woven");
-    }
+  // Handles and several shells go through `weave_solids` (cut.hpp); a single genus-0 shell
+  // is woven whole (through the front moves of self_crossing.hpp when its loops cross
+  // themselves).
+  bool whole = r.diagnosis.components <= 1;
+  for (const auto& g : r.diagnosis.genus_per_component) whole = whole && g && *g == 0;
+  if (r.diagnosis.handles && !r.diagnosis.handles->decided) {
+    throw Unsupported(file.path + ": cannot tell which cycles bound inside the solid (" +
+                      r.diagnosis.handles->undecided_reason +
+                      "), so whether a hex mesh exists is undecided; docs/topology.md lists "
+                      "the assumptions of the test");
   }
   r.surface = surface_of(file, &r.file_nodes);
   r.seconds.diagnose = clock.lap();
@@ -49,11 +52,13 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
   stage("orient");
   r.orientation = orient_outward(r.surface);
   for (std::size_t c = 0; c < r.orientation.nesting_depth.size(); ++c) {
-    if (r.orientation.nesting_depth[c] > 0) {
+    if (r.orientation.nesting_depth[c] > 1) {
       throw Unsupported("component " + std::to_string(c) + " of " + file.path +
-                        " lies inside another component (nested shells, e.g. a hollow ball): "
-                        "not supported yet; mesh each shell's solid separately");
+                        " lies inside a cavity of another shell (nesting depth " +
+                        std::to_string(r.orientation.nesting_depth[c]) +
+                        "): not supported yet; mesh the solids separately");
     }
+    if (r.orientation.nesting_depth[c] == 1) whole = false;  // a cavity: weave_solids
   }
   r.seconds.orient = clock.lap();
 
@@ -62,11 +67,20 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
   const std::vector<std::array<double, 4>> angles = options.weave.rules == weave::RuleSet::Extended
                                                         ? dihedral_angles(r.surface)
                                                         : std::vector<std::array<double, 4>>{};
-  if (options.self_crossing_moves && r.diagnosis.self_intersecting_loops.value_or(0) > 0) {
+  const bool self_crossing = r.diagnosis.self_intersecting_loops.value_or(0) > 0;
+  if (self_crossing && !whole) {
+    throw Unsupported(file.path +
+                      ": loops that cross themselves on a solid with handles or several "
+                      "shells are not supported yet (each is supported alone); mesh the "
+                      "shells separately or re-mesh the surface without self-intersecting loops");
+  }
+  if (whole && options.self_crossing_moves && self_crossing) {
     r.woven = weave_self_crossing(r.surface, options.weave, angles, options.self_crossing,
                                   r.self_crossing);
-  } else {
+  } else if (whole) {
     r.woven = weave::weave(r.surface.surface, options.weave, angles);
+  } else {
+    r.woven = weave_solids(r.surface, options.weave, options.cut, &r.solids);
   }
   r.seconds.weave = clock.lap();
 

@@ -79,17 +79,66 @@ TEST(Pipeline, TwoDisjointShellsAreBothMeshed) {
   EXPECT_TRUE(r.validation.valid) << r.validation.summary();
 }
 
-TEST(Pipeline, GenusOneIsUnsupportedWithAClearMessage) {
+TEST(Pipeline, SquareRingIsCutAndGluedIntoItsEightHexes) {
+  // 3x3x1 block minus the centre column: 32 quads, genus 1; the handle cycle is a 4-edge
+  // section, its disc one quad, the cut ball a bent 1x1x8 bar.
+  const SurfaceMesh ring = test::voxel_surface(test::ring_cells());
+  ASSERT_EQ(ring.surface.quads.size(), 32u);
+  const MeshResult r = mesh_file(file_of(ring, "ring.obj"));
+  EXPECT_EQ(r.mesh.complex.hexes.size(), 8u);
+  EXPECT_TRUE(r.validation.valid) << r.validation.summary();
+  EXPECT_TRUE(r.validation.boundary_compared);
+  EXPECT_EQ(r.quality.inverted, 0u);
+  ASSERT_EQ(r.solids.cuts.size(), 1u);
+  EXPECT_EQ(r.solids.cuts[0].cycle.size(), 4u);
+  EXPECT_EQ(r.solids.cuts[0].grid_a * r.solids.cuts[0].grid_b, 1);
+}
+
+TEST(Pipeline, DoubleRingGetsTwoCutsAndAValidComplex) {
+  std::vector<std::array<int, 3>> cells;
+  for (int j = 0; j < 5; ++j)
+    for (int i = 0; i < 3; ++i)
+      if (!(i == 1 && (j == 1 || j == 3))) cells.push_back({i, j, 0});
+  const MeshResult r = mesh_file(file_of(test::voxel_surface(cells), "double-ring"));
+  EXPECT_EQ(r.solids.cuts.size(), 2u);
+  EXPECT_EQ(r.mesh.complex.hexes.size(), 13u);
+  EXPECT_TRUE(r.validation.valid) << r.validation.summary();
+  EXPECT_EQ(r.quality.inverted, 0u);
+}
+
+TEST(Pipeline, TorusWithEvenSectionGivesAValidComplex) {
+  // 8 quads round the tube, 12 along: the disc is a grid spanning an 8-edge meridian.
+  const MeshResult r = mesh_file(file_of(test::torus_surface(8, 12, 3.0, 1.0), "torus"));
+  EXPECT_TRUE(r.validation.valid) << r.validation.summary();
+  EXPECT_GT(r.mesh.complex.hexes.size(), 0u);
+  EXPECT_EQ(r.quality.inverted, 0u);
+  ASSERT_EQ(r.solids.cuts.size(), 1u);
+  EXPECT_EQ(r.solids.cuts[0].cycle.size(), 8u);
+}
+
+TEST(Pipeline, TriangularTorusIsRefusedAsImpossible) {
   try {
-    (void)mesh_file(file_of(test::voxel_surface(test::ring_cells()), "ring.obj"));
-    FAIL() << "expected Unsupported";
-  } catch (const Unsupported& e) {
-    EXPECT_NE(std::string(e.what()).find("genus 1"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("ring.obj"), std::string::npos) << e.what();
+    (void)mesh_file(file_of(test::torus_surface(3, 8, 3.0, 1.0), "tri-torus.obj"));
+    FAIL() << "expected TopologyError";
+  } catch (const TopologyError& e) {
+    EXPECT_NE(std::string(e.what()).find("no hex mesh with this boundary exists"),
+              std::string::npos)
+        << e.what();
   }
 }
 
-TEST(Pipeline, NestedShellsAreUnsupported) {
+TEST(Pipeline, DisjointSolidsAreWovenSeparatelyAndCombined) {
+  // A ring beside a 2x2x2 box: two solids, one with a handle.
+  const SurfaceMesh ring = test::voxel_surface(test::ring_cells());
+  const SurfaceMesh box = test::translated(test::box_surface(2, 2, 2), {10.0, 0.0, 0.0});
+  const MeshResult r = mesh_file(file_of(test::merged_surfaces({ring, box}), "two solids"));
+  EXPECT_EQ(r.solids.solids, 2u);
+  EXPECT_EQ(r.mesh.complex.hexes.size(), 16u);
+  EXPECT_TRUE(r.validation.valid) << r.validation.summary();
+  EXPECT_EQ(r.quality.inverted, 0u);
+}
+
+TEST(Pipeline, HollowBoxIsMeshedThroughAnAnnulusCut) {
   const SurfaceMesh outer = test::box_surface(3, 3, 3);
   const SurfaceMesh inner = test::box_surface(1, 1, 1);
   SurfaceMesh both = outer;
@@ -102,12 +151,12 @@ TEST(Pipeline, NestedShellsAreUnsupported) {
     both.surface.quads.push_back(q);
   }
   both.surface.num_nodes = static_cast<std::size_t>(n0 + 8);
-  try {
-    (void)mesh_file(file_of(both, "hollow"));
-    FAIL() << "expected Unsupported";
-  } catch (const Unsupported& e) {
-    EXPECT_NE(std::string(e.what()).find("nested"), std::string::npos) << e.what();
-  }
+  const MeshResult r = mesh_file(file_of(both, "hollow"));
+  EXPECT_TRUE(r.validation.valid) << r.validation.summary();
+  EXPECT_TRUE(r.validation.boundary_compared);
+  EXPECT_EQ(r.solids.solids, 1u);
+  EXPECT_EQ(r.solids.cuts.size(), 1u);
+  EXPECT_EQ(r.quality.inverted, 0u);
 }
 
 TEST(Pipeline, OddQuadCountIsATopologyError) {
@@ -122,6 +171,39 @@ TEST(Pipeline, CheckModeKeepsTheFrontValidOnTheRhombicDodecahedron) {
   const MeshResult r = mesh_file(file_of(test::rhombic_dodecahedron(), "rd"), options);
   EXPECT_TRUE(r.validation.valid) << r.validation.summary();
   EXPECT_EQ(r.mesh.complex.hexes.size(), 4u);
+}
+
+}  // namespace
+}  // namespace stcweave::primal
+
+namespace stcweave::primal {
+namespace {
+
+TEST(Pipeline, HandlesAndACavityTogetherAreUnsupported) {
+  // A torus (tube radius 1) with a small cubic cavity inside its tube.
+  const SurfaceMesh torus = test::torus_surface(8, 12, 3.0, 1.0);
+  SurfaceMesh cavity = test::box_surface(1, 1, 1, 0.4, 0.4, 0.4);
+  cavity = test::reversed_surface(test::translated(cavity, {2.8, -0.2, -0.2}));
+  try {
+    (void)mesh_file(file_of(test::merged_surfaces({torus, cavity}), "torus with cavity"));
+    FAIL() << "expected Unsupported";
+  } catch (const Unsupported& e) {
+    EXPECT_NE(std::string(e.what()).find("both handles and cavities"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(Pipeline, UndecidedHandlesAreRefused) {
+  SurfaceMesh torus = test::torus_surface(4, 6, 3.0, 1.0);
+  torus.points.row(0) = Eigen::RowVector3d(3.0 - 1.5, 0.0, 0.0);
+  try {
+    (void)mesh_file(file_of(torus, "folded"));
+    FAIL() << "expected Unsupported";
+  } catch (const Unsupported& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot tell which cycles bound inside"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

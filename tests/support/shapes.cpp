@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "stcweave/primal/generate.hpp"
@@ -183,6 +184,59 @@ primal::SurfaceMesh rhombic_dodecahedron() {
 
 primal::SurfaceMesh reversed_surface(primal::SurfaceMesh mesh) {
   for (auto& q : mesh.surface.quads) q = stc::reversed(q);
+  return mesh;
+}
+
+primal::SurfaceMesh torus_surface(int around, int along, double big_r, double r) {
+  primal::SurfaceMesh m;
+  m.points.resize(around * along, 3);
+  const double pi = 3.14159265358979323846;
+  const auto id = [&](int i, int j) { return NodeId(((j % along) * around) + (i % around)); };
+  for (int j = 0; j < along; ++j) {
+    const double phi = 2.0 * pi * j / along;
+    for (int i = 0; i < around; ++i) {
+      const double theta = 2.0 * pi * i / around;
+      const double rho = big_r + r * std::cos(theta);
+      m.points.row(id(i, j).value()) =
+          Eigen::RowVector3d(rho * std::cos(phi), rho * std::sin(phi), r * std::sin(theta));
+    }
+  }
+  for (int j = 0; j < along; ++j)
+    for (int i = 0; i < around; ++i)
+      m.surface.quads.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+  m.surface.num_nodes = static_cast<std::size_t>(around * along);
+  // Outward: positive signed volume.
+  double volume = 0.0;
+  for (const auto& q : m.surface.quads) {
+    const Eigen::Vector3d p0 = m.points.row(q[0].value()), p1 = m.points.row(q[1].value()),
+                          p2 = m.points.row(q[2].value()), p3 = m.points.row(q[3].value());
+    volume += p0.dot(p1.cross(p2)) + p0.dot(p2.cross(p3));
+  }
+  if (volume < 0.0)
+    for (auto& q : m.surface.quads) q = stc::reversed(q);
+  return m;
+}
+
+primal::SurfaceMesh merged_surfaces(const std::vector<primal::SurfaceMesh>& surfaces) {
+  primal::SurfaceMesh m;
+  Eigen::Index rows = 0;
+  for (const auto& s : surfaces) rows += s.points.rows();
+  m.points.resize(rows, 3);
+  std::size_t offset = 0;
+  for (const auto& s : surfaces) {
+    m.points.middleRows(static_cast<Eigen::Index>(offset), s.points.rows()) = s.points;
+    for (stc::Quad q : s.surface.quads) {
+      for (NodeId& v : q) v = NodeId(v.index() + offset);
+      m.surface.quads.push_back(q);
+    }
+    offset += static_cast<std::size_t>(s.points.rows());
+  }
+  m.surface.num_nodes = offset;
+  return m;
+}
+
+primal::SurfaceMesh translated(primal::SurfaceMesh mesh, const Eigen::RowVector3d& offset) {
+  mesh.points.rowwise() += offset;
   return mesh;
 }
 

@@ -63,4 +63,15 @@ primal::SurfaceMesh rhombic_dodecahedron();
 /// A surface with every quad reversed (inward).
 primal::SurfaceMesh reversed_surface(primal::SurfaceMesh mesh);
 
+/// A torus about the z axis: `around` quads round the tube (a regular polygon of radius `r`
+/// as cross-section, so 3 gives a triangular tube), `along` quads along it (centre radius
+/// `big_r`); around x along quads, outward. \pre around >= 3, along >= 3, big_r > r > 0.
+primal::SurfaceMesh torus_surface(int around, int along, double big_r = 3.0, double r = 1.0);
+
+/// The union of `surfaces` (nodes of each renumbered after the previous ones).
+primal::SurfaceMesh merged_surfaces(const std::vector<primal::SurfaceMesh>& surfaces);
+
+/// Every point of `mesh` moved by `offset`.
+primal::SurfaceMesh translated(primal::SurfaceMesh mesh, const Eigen::RowVector3d& offset);
+
 }  // namespace stcweave::test

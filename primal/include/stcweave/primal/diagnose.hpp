@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "stcweave/primal/handles.hpp"
 #include "stcweave/primal/mesh.hpp"
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/stc/hex_complex.hpp"
@@ -103,6 +104,9 @@ struct SurfaceDiagnosis {
   std::size_t nonmanifold_hex_faces = 0;
 
   DefectSites sites;
+  /// Handles (genus > 0, `diagnose_handles`), with node ids of the file; null when the genus
+  /// is 0 or undefined, or the surface is not a closed, finite, orientable manifold.
+  std::optional<HandleDiagnosis> handles;
   /// For a hex mesh, per boundary quad the hex face it comes from (empty otherwise).
   std::vector<stc::HexFaceRef> quad_origins;
   /// For a surface file, per quad its 1-based line in the file (0 or empty when unknown).
@@ -138,7 +142,8 @@ struct SurfaceDiagnosis {
 /// naming the defect, the elements concerned (first few, and how many) and what to do.
 /// Checked in this order, one message each: cells other than quads (triangles, ...),
 /// non-finite coordinates, degenerate quads, open surface, non-manifold edges,
-/// non-manifold nodes, non-orientable surface, odd number of quads, self-intersecting
+/// non-manifold nodes, non-orientable surface, odd number of quads, an odd handle cycle
+/// (a cycle of odd length bounding inside the solid: Erickson's obstruction), self-intersecting
 /// loops. Genus > 0 and several components are not defects here (the weaver decides).
 /// \param allow_self_intersecting_loops when true, self-intersecting loops are no defect
 ///        (the pipeline attaches hexes until they are gone, `weave_self_crossing`); an odd

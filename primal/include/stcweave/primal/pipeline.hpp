@@ -8,6 +8,7 @@
 #include <functional>
 #include <string>
 
+#include "stcweave/primal/cut.hpp"
 #include "stcweave/primal/diagnose.hpp"
 #include "stcweave/primal/mesh.hpp"
 #include "stcweave/primal/pillow.hpp"
@@ -50,6 +51,8 @@ struct MeshOptions {
   /// Settings of the positioning stage; `num_fixed` is set by the pipeline (the input
   /// surface's nodes are fixed).
   PositionOptions position;
+  /// Settings of the handle cuts (surfaces of genus > 0, see cut.hpp).
+  CutOptions cut;
   /// Called when a stage starts ("diagnose", "orient", "weave", "validate", "recover",
   /// "pillow", "position", "quality").
   std::function<void(const std::string& stage)> on_stage;
@@ -77,6 +80,9 @@ struct MeshResult {
   SurfaceDiagnosis diagnosis;
   OrientationReport orientation;
   weave::WeaveResult woven;
+  /// Shells woven separately and handle cuts (empty for a single genus-0 shell, which is
+  /// woven whole).
+  SolidsReport solids;
   /// Validation of the final complex (`mesh.complex`, after pillowing) against the input.
   stc::ValidationReport validation;
   HarmonicReport harmonic;
@@ -93,7 +99,9 @@ struct MeshResult {
 
 /// Meshes the quad surface of `file` (its quads, or the boundary of its hexes).
 /// \throw TopologyError for a surface that cannot be woven (see `require_weavable`).
-/// \throw Unsupported for a component of genus > 0 or nested shells.
+/// \throw TopologyError for an odd handle cycle (no hex mesh exists).
+/// \throw Unsupported for nested shells, handles that `weave_solids` cannot cut, or loops
+///        that cross themselves on a solid with handles or several shells.
 /// \throw WeaveError when the weave is blocked, or the search for front moves of a surface
 ///        with self-intersecting loops gives up.
 /// \throw InternalError when the woven complex breaks an invariant (unless keep_invalid).

@@ -1,0 +1,63 @@
+#pragma once
+/// \file
+/// Solids the weave cannot take whole: several disjoint shells, and handles (genus > 0).
+///
+/// Each solid (a connected shell) is woven on its own. A solid of genus g > 0 is first cut
+/// along g quad-meshed discs, one per handle cycle found by `diagnose_handles`: the disc is a
+/// grid whose boundary is the cycle (corners where the cycle turns most), its nodes placed
+/// by transfinite interpolation of the cycle. Cutting along it duplicates the cycle's nodes and
+/// the disc (one copy on each side), which lowers the genus by one; the cut ball is woven with
+/// every node of the cut surface fixed (the weave takes them as input nodes), then the two
+/// copies are glued back by identifying their nodes: the disc's nodes become interior nodes
+/// of the final mesh. A disc choice whose cut surface has a self-intersecting loop, whose
+/// weave is blocked or whose glued complex breaks an invariant is discarded and the next is
+/// tried. docs/topology.md explains the choices.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "stcweave/primal/diagnose.hpp"
+#include "stcweave/primal/mesh.hpp"
+#include "stcweave/weave/weave.hpp"
+
+namespace stcweave::primal {
+
+/// Settings of `weave_solids`.
+struct CutOptions {
+  /// Disc choices woven per handle before giving up (choices whose cut has a
+  /// self-intersecting loop are discarded without weaving and not counted).
+  std::size_t max_disc_attempts = 12;
+  /// Cut surfaces whose loops are checked per solid (over every handle's disc choices, in a
+  /// depth-first search) before giving up.
+  std::size_t max_loop_checks = 2000;
+};
+
+/// One handle cut: where, with which disc, after how many attempts.
+struct HandleCut {
+  std::vector<NodeId> cycle;  ///< surface node ids (of the woven surface)
+  int grid_a = 0;             ///< the disc is a grid_a x grid_b grid of quads
+  int grid_b = 0;
+  std::size_t attempts = 0;  ///< disc choices tried, loop-checked or woven (the last was kept)
+};
+
+/// What `weave_solids` did.
+struct SolidsReport {
+  std::size_t solids = 0;  ///< shells woven separately
+  std::vector<HandleCut> cuts;
+  double cut_seconds = 0.0;    ///< building discs and cut surfaces
+  double weave_seconds = 0.0;  ///< the weaves of the cut balls (including discarded ones)
+  double glue_seconds = 0.0;   ///< gluing, renumbering, checking the glued complexes
+};
+
+/// Weaves every solid of `mesh` on its own, cutting its handles first, and combines them:
+/// input nodes keep their ids, interior nodes (disc nodes included) follow, solid by solid.
+/// \pre `mesh` is closed, manifold, oriented outward (`orient_outward`), no component inside
+///      another, every handle cycle even (`require_weavable`).
+/// \throw Unsupported when the handle diagnosis cannot decide, when handle cycles share nodes,
+///        or when no disc choice gives a loop-clean cut, a complete weave and a valid glue.
+/// \throw WeaveError when a solid without handles cannot be woven.
+weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptions& options,
+                                const CutOptions& cut_options = {}, SolidsReport* report = nullptr);
+
+}  // namespace stcweave::primal

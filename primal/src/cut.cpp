@@ -1,0 +1,815 @@
+#include "stcweave/primal/cut.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <numeric>
+#include <optional>
+#include <tuple>
+
+#include "stcweave/primal/edge_angles.hpp"
+#include "stcweave/primal/handles.hpp"
+#include "stcweave/stc/errors.hpp"
+#include "stcweave/stc/loops.hpp"
+#include "stcweave/stc/surface_topology.hpp"
+#include "stcweave/stc/validate.hpp"
+
+namespace stcweave::primal {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+/// A disc choice: a grid_a x grid_b grid whose boundary walk starts at cycle position `start`.
+struct DiscChoice {
+  int a = 0;
+  int b = 0;
+  std::size_t start = 0;
+  double score = 0.0;
+  bool ring = false;  ///< an O-grid: the grid is an inner block ringed by one layer of quads
+};
+
+/// Inner block of an O-grid disc: the grid's transfinite positions scaled by this factor
+/// about the cycle's centroid.
+constexpr double kRingShrink = 0.6;
+
+/// Disc choices for a cycle, best first: the four grid corners where the cycle turns most
+/// (sum of turning angles), then the squarest grid, then the smallest start.
+std::vector<DiscChoice> disc_choices(const Points& points, const std::vector<NodeId>& cycle) {
+  const std::size_t len = cycle.size();
+  std::vector<double> turn(len, 0.0);
+  const auto at = [&](std::size_t k) -> Eigen::Vector3d {
+    return points.row(cycle[k % len].value()).transpose();
+  };
+  for (std::size_t k = 0; k < len; ++k) {
+    const Eigen::Vector3d in = (at(k) - at(k + len - 1)).normalized();
+    const Eigen::Vector3d out = (at(k + 1) - at(k)).normalized();
+    turn[k] = std::acos(std::clamp(in.dot(out), -1.0, 1.0));
+  }
+  std::vector<DiscChoice> choices;
+  const int half = static_cast<int>(len / 2);
+  for (int a = 1; a < half; ++a) {
+    const int b = half - a;
+    if (a > b) break;  // (a, b) and (b, a) differ by the start only
+    for (std::size_t s = 0; s < len; ++s) {
+      // a x b and b x a starting at s are the same corners shifted: enumerate both starts.
+      DiscChoice c{a, b, s, 0.0};
+      const std::size_t ua = static_cast<std::size_t>(a);
+      const std::size_t ub = static_cast<std::size_t>(b);
+      c.score = turn[s % len] + turn[(s + ua) % len] + turn[(s + ua + ub) % len] +
+                turn[(s + 2 * ua + ub) % len];
+      choices.push_back(c);
+    }
+  }
+  std::stable_sort(choices.begin(), choices.end(), [](const DiscChoice& p, const DiscChoice& q) {
+    if (std::abs(p.score - q.score) > 1e-9) return p.score > q.score;
+    if (std::abs(p.a - p.b) != std::abs(q.a - q.b))
+      return std::abs(p.a - p.b) < std::abs(q.a - q.b);
+    return p.start < q.start;
+  });
+  // Same corner set reached from two starts (a == b symmetric shifts): keep the first.
+  std::vector<DiscChoice> unique;
+  std::vector<std::vector<std::size_t>> seen;
+  for (const DiscChoice& c : choices) {
+    const std::size_t ua = static_cast<std::size_t>(c.a);
+    const std::size_t ub = static_cast<std::size_t>(c.b);
+    std::vector<std::size_t> corners{c.start % len, (c.start + ua) % len, (c.start + ua + ub) % len,
+                                     (c.start + 2 * ua + ub) % len};
+    std::sort(corners.begin(), corners.end());
+    if (std::find(seen.begin(), seen.end(), corners) != seen.end()) continue;
+    seen.push_back(corners);
+    unique.push_back(c);
+  }
+  // O-grid discs come after every plain grid: measured, their ring loops make the weave add
+  // pillow layers on both copies of the disc (torus_tf_coarse: 306 hexes, min scaled Jacobian
+  // 0.18, against 108 and 0.48 with the plain 3 x 3 grid).
+  const std::size_t plain = unique.size();
+  for (std::size_t k = 0; k < plain; ++k) {
+    DiscChoice ring = unique[k];
+    ring.ring = true;
+    unique.push_back(ring);
+  }
+  return unique;
+}
+
+/// A surface being cut: quads and points over its own node ids, and per node the id of the
+/// final mesh node it stands for.
+struct CutSurface {
+  SurfaceMesh mesh;
+  std::vector<NodeId> final_id;
+};
+
+/// The cut of `s` along `cycle` (node ids of `s`) with the disc `choice`; new disc interior
+/// nodes get final ids from `next_final` on.
+/// Per node of `cycle` (a simple cycle of `surface`'s edges), the quads on its + side: the
+/// quad traversing the outgoing cycle edge forward, and the fan from it round the node to the
+/// incoming cycle edge.
+std::vector<std::vector<std::size_t>> plus_fans(const stc::QuadSurface& surface,
+                                                const std::vector<NodeId>& cycle) {
+  const stc::SurfaceTopology topo = stc::surface_topology(surface);
+  const std::size_t len = cycle.size();
+  const std::size_t n = surface.num_nodes;
+  std::vector<std::size_t> position(n, static_cast<std::size_t>(-1));
+  for (std::size_t k = 0; k < len; ++k) position[cycle[k].index()] = k;
+  const auto is_cycle_edge = [&](NodeId x, NodeId y) {
+    const std::size_t px = position[x.index()];
+    const std::size_t py = position[y.index()];
+    if (px == static_cast<std::size_t>(-1) || py == static_cast<std::size_t>(-1)) return false;
+    return (px + 1) % len == py || (py + 1) % len == px;
+  };
+  // Per cycle node, the quads on the + side (those traversing the outgoing cycle edge
+  // forward, and the fan from there to the incoming cycle edge).
+  std::vector<std::vector<std::size_t>> plus(len);
+  for (std::size_t k = 0; k < len; ++k) {
+    const NodeId v = cycle[k];
+    const NodeId next = cycle[(k + 1) % len];
+    std::size_t quad = static_cast<std::size_t>(-1);
+    int side = -1;
+    for (std::size_t q = 0; q < surface.num_quads() && side < 0; ++q) {
+      for (int i = 0; i < 4; ++i) {
+        if (surface.quads[q][static_cast<std::size_t>(i)] == v &&
+            surface.quads[q][static_cast<std::size_t>((i + 1) % 4)] == next) {
+          quad = q;
+          side = i;
+          break;
+        }
+      }
+    }
+    if (side < 0)
+      throw InternalError("cut: cycle edge " + v.str() + "-" + next.str() + " is not an edge");
+    for (std::size_t guard = 0; guard <= surface.num_quads(); ++guard) {
+      plus[k].push_back(quad);
+      // The other side of `quad` at v ends at v: side (i-1), from q[i-1] to v.
+      const int back = (side + 3) % 4;
+      const stc::Quad& qq = surface.quads[quad];
+      if (is_cycle_edge(qq[static_cast<std::size_t>(back)], v)) break;
+      const stc::QuadSide across = topo.neighbour(stc::QuadSide{QuadId(quad), back});
+      quad = across.quad.index();
+      // In the neighbour, v starts side `across.side`.
+      side = across.side;
+    }
+  }
+  return plus;
+}
+
+CutSurface cut_along(const CutSurface& s, const std::vector<NodeId>& cycle,
+                     const DiscChoice& choice, std::size_t* next_final) {
+  const stc::QuadSurface& surface = s.mesh.surface;
+  const std::size_t len = cycle.size();
+  const std::size_t n = surface.num_nodes;
+  const std::vector<std::vector<std::size_t>> plus = plus_fans(surface, cycle);
+  // The disc over its own ids: a grid (a+1) x (b+1), node (i, j) at i + (a+1) j, whose
+  // boundary walk (0,0) -> (a,0) -> (a,b) -> (0,b) -> (0,0) follows the cycle from `start`;
+  // with a ring, that grid is an inner block and one layer of quads joins its boundary to the
+  // cycle (an O-grid).
+  const std::size_t a = static_cast<std::size_t>(choice.a);
+  const std::size_t b = static_cast<std::size_t>(choice.b);
+  const std::size_t grid = (a + 1) * (b + 1);
+  const auto gid = [&](std::size_t i, std::size_t j) { return i + (a + 1) * j; };
+  std::vector<std::size_t> walk_node(len);  // grid node at each walk position
+  for (std::size_t i = 0; i < a; ++i) walk_node[i] = gid(i, 0);
+  for (std::size_t j = 0; j < b; ++j) walk_node[a + j] = gid(a, j);
+  for (std::size_t i = a; i > 0; --i) walk_node[a + b + (a - i)] = gid(i, b);
+  for (std::size_t j = b; j > 0; --j) walk_node[2 * a + b + (b - j)] = gid(0, j);
+  const auto cycle_at = [&](std::size_t p) { return (choice.start + p) % len; };
+  std::vector<Eigen::RowVector3d> grid_pos(grid);
+  std::vector<std::size_t> walk_of(grid, static_cast<std::size_t>(-1));
+  for (std::size_t p = 0; p < len; ++p) {
+    walk_of[walk_node[p]] = p;
+    grid_pos[walk_node[p]] = s.mesh.points.row(cycle[cycle_at(p)].value());
+  }
+  const auto bp = [&](std::size_t i, std::size_t j) { return grid_pos[gid(i, j)]; };
+  for (std::size_t j = 1; j < b; ++j) {
+    for (std::size_t i = 1; i < a; ++i) {
+      const double u = static_cast<double>(i) / static_cast<double>(a);
+      const double w = static_cast<double>(j) / static_cast<double>(b);
+      grid_pos[gid(i, j)] = (1 - w) * bp(i, 0) + w * bp(i, b) + (1 - u) * bp(0, j) + u * bp(a, j) -
+                            ((1 - u) * (1 - w) * bp(0, 0) + u * (1 - w) * bp(a, 0) +
+                             (1 - u) * w * bp(0, b) + u * w * bp(a, b));
+    }
+  }
+  // Disc nodes: boundary ones are walk positions, the others interior (numbered in order).
+  std::vector<std::optional<std::size_t>> disc_walk;
+  std::vector<Eigen::RowVector3d> disc_pos;
+  std::vector<std::array<std::size_t, 4>> disc_quads;
+  std::vector<std::size_t> grid_disc(grid);
+  if (!choice.ring) {
+    for (std::size_t g = 0; g < grid; ++g) {
+      grid_disc[g] = disc_walk.size();
+      disc_walk.push_back(walk_of[g] == static_cast<std::size_t>(-1)
+                              ? std::nullopt
+                              : std::optional<std::size_t>(walk_of[g]));
+      disc_pos.push_back(grid_pos[g]);
+    }
+  } else {
+    Eigen::RowVector3d centre = Eigen::RowVector3d::Zero();
+    for (std::size_t p = 0; p < len; ++p) centre += grid_pos[walk_node[p]];
+    centre /= static_cast<double>(len);
+    std::vector<std::size_t> rim(len);
+    for (std::size_t p = 0; p < len; ++p) {
+      rim[p] = disc_walk.size();
+      disc_walk.emplace_back(p);
+      disc_pos.push_back(grid_pos[walk_node[p]]);
+    }
+    for (std::size_t g = 0; g < grid; ++g) {
+      grid_disc[g] = disc_walk.size();
+      disc_walk.emplace_back(std::nullopt);
+      disc_pos.push_back(centre + kRingShrink * (grid_pos[g] - centre));
+    }
+    for (std::size_t p = 0; p < len; ++p) {
+      const std::size_t p1 = (p + 1) % len;
+      disc_quads.push_back({rim[p], rim[p1], grid_disc[walk_node[p1]], grid_disc[walk_node[p]]});
+    }
+  }
+  for (std::size_t j = 0; j < b; ++j) {
+    for (std::size_t i = 0; i < a; ++i) {
+      disc_quads.push_back({grid_disc[gid(i, j)], grid_disc[gid(i + 1, j)],
+                            grid_disc[gid(i + 1, j + 1)], grid_disc[gid(i, j + 1)]});
+    }
+  }
+  std::vector<std::size_t> interior_index(disc_walk.size(), 0);
+  std::size_t interior = 0;
+  for (std::size_t d = 0; d < disc_walk.size(); ++d)
+    if (!disc_walk[d]) interior_index[d] = interior++;
+
+  CutSurface out;
+  const std::size_t n_new = n + len + 2 * interior;
+  out.mesh.points.resize(static_cast<Eigen::Index>(n_new), 3);
+  out.mesh.points.topRows(static_cast<Eigen::Index>(n)) =
+      s.mesh.points.topRows(static_cast<Eigen::Index>(n));
+  out.final_id = s.final_id;
+  out.final_id.resize(n_new);
+  for (std::size_t k = 0; k < len; ++k) {
+    out.mesh.points.row(static_cast<Eigen::Index>(n + k)) = s.mesh.points.row(cycle[k].value());
+    out.final_id[n + k] = s.final_id[cycle[k].index()];
+  }
+  out.mesh.surface.quads = surface.quads;
+  for (std::size_t k = 0; k < len; ++k) {
+    for (std::size_t q : plus[k]) {
+      for (NodeId& v : out.mesh.surface.quads[q]) {
+        if (v == cycle[k]) v = NodeId(n + k);
+      }
+    }
+  }
+  // Minus copy: the cycle's own ids; plus copy: n + k; interior: minus at n + len + t, plus
+  // at n + len + interior + t, both standing for one new final node.
+  const auto node_minus = [&](std::size_t d) {
+    if (disc_walk[d]) return cycle[cycle_at(*disc_walk[d])];
+    return NodeId(n + len + interior_index[d]);
+  };
+  const auto node_plus = [&](std::size_t d) {
+    if (disc_walk[d]) return NodeId(n + cycle_at(*disc_walk[d]));
+    return NodeId(n + len + interior + interior_index[d]);
+  };
+  for (std::size_t d = 0; d < disc_walk.size(); ++d) {
+    if (disc_walk[d]) continue;
+    const NodeId m = node_minus(d);
+    const NodeId pl = node_plus(d);
+    out.mesh.points.row(m.value()) = disc_pos[d];
+    out.mesh.points.row(pl.value()) = disc_pos[d];
+    const NodeId f((*next_final)++);
+    out.final_id[m.index()] = f;
+    out.final_id[pl.index()] = f;
+  }
+  for (const auto& q : disc_quads) {
+    // Minus copy: traverses the cycle forward; plus copy: reversed.
+    out.mesh.surface.quads.push_back(
+        {node_minus(q[0]), node_minus(q[1]), node_minus(q[2]), node_minus(q[3])});
+    out.mesh.surface.quads.push_back(
+        {node_plus(q[0]), node_plus(q[3]), node_plus(q[2]), node_plus(q[1])});
+  }
+  out.mesh.surface.num_nodes = n_new;
+  return out;
+}
+
+/// The woven STC of a complex: face neighbours by matching faces, boundary faces by matching
+/// the quads of `boundary`.
+std::vector<std::array<weave::DualLink, 6>> dual_of(const stc::HexComplex& complex,
+                                                    const stc::QuadSurface& boundary) {
+  std::map<std::array<NodeId, 4>, std::vector<std::pair<std::int32_t, std::int8_t>>> faces;
+  for (std::size_t h = 0; h < complex.hexes.size(); ++h) {
+    for (int f = 0; f < 6; ++f) {
+      stc::Quad q = stc::hex_face(complex.hexes[h], f);
+      std::sort(q.begin(), q.end());
+      faces[q].emplace_back(static_cast<std::int32_t>(h), static_cast<std::int8_t>(f));
+    }
+  }
+  std::map<std::array<NodeId, 4>, std::int32_t> quads;
+  for (std::size_t q = 0; q < boundary.quads.size(); ++q) {
+    stc::Quad k = boundary.quads[q];
+    std::sort(k.begin(), k.end());
+    quads[k] = static_cast<std::int32_t>(q);
+  }
+  std::vector<std::array<weave::DualLink, 6>> dual(complex.hexes.size());
+  for (const auto& [key, uses] : faces) {
+    if (uses.size() == 2) {
+      for (int s = 0; s < 2; ++s) {
+        const auto& me = uses[static_cast<std::size_t>(s)];
+        const auto& other = uses[static_cast<std::size_t>(1 - s)];
+        dual[static_cast<std::size_t>(me.first)][static_cast<std::size_t>(me.second)] =
+            weave::DualLink{false, other.first, other.second};
+      }
+    } else if (uses.size() == 1) {
+      const auto it = quads.find(key);
+      if (it != quads.end()) {
+        dual[static_cast<std::size_t>(uses[0].first)][static_cast<std::size_t>(uses[0].second)] =
+            weave::DualLink{true, it->second, -1};
+      }
+    }
+  }
+  return dual;
+}
+
+/// A woven ball mapped to final ids.
+struct BallWeave {
+  weave::WeaveResult woven;
+  std::vector<stc::Hex> hexes;  ///< over final ids (interior nodes from the given offset)
+  std::size_t interior = 0;
+};
+
+BallWeave weave_ball(const CutSurface& s, const weave::WeaveOptions& options,
+                     std::size_t first_interior) {
+  BallWeave out;
+  const std::vector<std::array<double, 4>> angles = options.rules == weave::RuleSet::Extended
+                                                        ? dihedral_angles(s.mesh)
+                                                        : std::vector<std::array<double, 4>>{};
+  out.woven = weave::weave(s.mesh.surface, options, angles);
+  const std::size_t inputs = out.woven.num_input_nodes;
+  out.interior = out.woven.complex.num_nodes - inputs;
+  for (const stc::Hex& h : out.woven.complex.hexes) {
+    stc::Hex m{};
+    for (std::size_t i = 0; i < 8; ++i) {
+      m[i] = h[i].index() < inputs ? s.final_id[h[i].index()]
+                                   : NodeId(first_interior + (h[i].index() - inputs));
+    }
+    out.hexes.push_back(m);
+  }
+  return out;
+}
+
+void add_stats(weave::WeaveStats& sum, const weave::WeaveStats& s) {
+  sum.selections += s.selections;
+  sum.shrinks += s.shrinks;
+  sum.failed_shrinks += s.failed_shrinks;
+  sum.seams += s.seams;
+  sum.coincident_glues += s.coincident_glues;
+  sum.crosses += s.crosses;
+  sum.blind_chords += s.blind_chords;
+  sum.blocked_seams += s.blocked_seams;
+  sum.relaxed_preconditions += s.relaxed_preconditions;
+  sum.parallel_merges += s.parallel_merges;
+  sum.nonconvexity_seams += s.nonconvexity_seams;
+  sum.rolled_back_shrinks += s.rolled_back_shrinks;
+}
+
+/// The cut of `s` along an annulus of one layer of quads between two node-disjoint cycles of
+/// equal length on different shells: quad p = (outer[p], outer[p+1], inner[p+1], inner[p]).
+/// Both cycles' nodes are duplicated and the annulus added once facing each side; no new
+/// interior node.
+CutSurface cut_annulus(const CutSurface& s, const std::vector<NodeId>& outer,
+                       const std::vector<NodeId>& inner) {
+  const stc::QuadSurface& surface = s.mesh.surface;
+  const std::size_t len = outer.size();
+  const std::size_t n = surface.num_nodes;
+  // The annulus traverses the outer cycle forward and the inner one backward.
+  std::vector<NodeId> inner_forward(inner.rbegin(), inner.rend());
+  const auto plus_outer = plus_fans(surface, outer);
+  const auto plus_inner = plus_fans(surface, inner_forward);
+  CutSurface out;
+  out.mesh.points.resize(static_cast<Eigen::Index>(n + 2 * len), 3);
+  out.mesh.points.topRows(static_cast<Eigen::Index>(n)) =
+      s.mesh.points.topRows(static_cast<Eigen::Index>(n));
+  out.final_id = s.final_id;
+  out.final_id.resize(n + 2 * len);
+  std::vector<NodeId> copy(n, NodeId::invalid());
+  for (std::size_t k = 0; k < len; ++k) {
+    copy[outer[k].index()] = NodeId(n + k);
+    copy[inner[k].index()] = NodeId(n + len + k);
+  }
+  for (std::size_t v = 0; v < n; ++v) {
+    if (!copy[v].is_valid()) continue;
+    out.mesh.points.row(copy[v].value()) = s.mesh.points.row(static_cast<Eigen::Index>(v));
+    out.final_id[copy[v].index()] = s.final_id[v];
+  }
+  out.mesh.surface.quads = surface.quads;
+  const auto apply = [&](const std::vector<NodeId>& cycle,
+                         const std::vector<std::vector<std::size_t>>& plus) {
+    for (std::size_t k = 0; k < cycle.size(); ++k) {
+      for (std::size_t q : plus[k]) {
+        for (NodeId& v : out.mesh.surface.quads[q]) {
+          if (v == cycle[k]) v = copy[cycle[k].index()];
+        }
+      }
+    }
+  };
+  apply(outer, plus_outer);
+  apply(inner_forward, plus_inner);
+  for (std::size_t p = 0; p < len; ++p) {
+    const std::size_t p1 = (p + 1) % len;
+    out.mesh.surface.quads.push_back({outer[p], outer[p1], inner[p1], inner[p]});
+    out.mesh.surface.quads.push_back({copy[outer[p].index()], copy[inner[p].index()],
+                                      copy[inner[p1].index()], copy[outer[p1].index()]});
+  }
+  out.mesh.surface.num_nodes = n + 2 * len;
+  return out;
+}
+
+/// Whether the ray from `o` along `dir` crosses triangle (a, b, c) at t > 0.
+bool ray_hits(const Eigen::Vector3d& o, const Eigen::Vector3d& dir, const Eigen::Vector3d& a,
+              const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  const Eigen::Vector3d e1 = b - a;
+  const Eigen::Vector3d e2 = c - a;
+  const Eigen::Vector3d p = dir.cross(e2);
+  const double det = e1.dot(p);
+  if (std::abs(det) < 1e-300) return false;
+  const Eigen::Vector3d t = o - a;
+  const double u = t.dot(p) / det;
+  if (u < 0.0 || u > 1.0) return false;
+  const Eigen::Vector3d q = t.cross(e1);
+  const double v = dir.dot(q) / det;
+  if (v < 0.0 || u + v > 1.0) return false;
+  return e2.dot(q) / det > 0.0;
+}
+
+}  // namespace
+
+weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptions& options,
+                                const CutOptions& cut_options, SolidsReport* report) {
+  SolidsReport local_report;
+  SolidsReport& rep = report != nullptr ? *report : local_report;
+  rep = SolidsReport{};
+  const stc::QuadSurface& surface = mesh.surface;
+  const stc::SurfaceTopology topo = stc::surface_topology(surface);
+  const std::size_t num_components = topo.components.size();
+
+  weave::WeaveResult result;
+  result.num_input_nodes = surface.num_nodes;
+  std::size_t next_final = surface.num_nodes;  // interior nodes, solid by solid
+
+  // Cavities: shells of negative signed volume (orient_outward points them into the
+  // cavity), each given to the smallest positive shell that encloses it (ray parity).
+  const auto point = [&](NodeId v) -> Eigen::Vector3d {
+    return mesh.points.row(v.value()).transpose();
+  };
+  std::vector<double> volume(num_components, 0.0);
+  for (std::size_t q = 0; q < surface.num_quads(); ++q) {
+    const stc::Quad& quad = surface.quads[q];
+    volume[topo.quad_components[q].index()] +=
+        (point(quad[0]).dot(point(quad[1]).cross(point(quad[2]))) +
+         point(quad[0]).dot(point(quad[2]).cross(point(quad[3])))) /
+        6.0;
+  }
+  std::vector<std::vector<std::size_t>> cavities(num_components);
+  for (std::size_t c = 0; c < num_components; ++c) {
+    if (volume[c] >= 0.0) continue;
+    std::size_t first_quad = 0;
+    while (topo.quad_components[first_quad].index() != c) ++first_quad;
+    const Eigen::Vector3d o = point(surface.quads[first_quad][0]);
+    const Eigen::Vector3d dir = Eigen::Vector3d(0.5390117, 0.6421423, 0.5449871).normalized();
+    std::size_t owner = num_components;
+    for (std::size_t other = 0; other < num_components; ++other) {
+      if (volume[other] <= 0.0) continue;
+      std::size_t hits = 0;
+      for (std::size_t q = 0; q < surface.num_quads(); ++q) {
+        if (topo.quad_components[q].index() != other) continue;
+        const stc::Quad& quad = surface.quads[q];
+        hits += ray_hits(o, dir, point(quad[0]), point(quad[1]), point(quad[2])) ? 1 : 0;
+        hits += ray_hits(o, dir, point(quad[0]), point(quad[2]), point(quad[3])) ? 1 : 0;
+      }
+      if (hits % 2 == 1 && (owner == num_components || volume[other] < volume[owner]))
+        owner = other;
+    }
+    if (owner == num_components) {
+      throw Unsupported(ComponentId(c).str() +
+                        " is oriented as a cavity but no shell encloses it: check the input");
+    }
+    cavities[owner].push_back(c);
+  }
+  rep.solids = 0;
+  for (std::size_t c = 0; c < num_components; ++c) rep.solids += volume[c] >= 0.0 ? 1 : 0;
+
+  for (std::size_t c = 0; c < num_components; ++c) {
+    if (volume[c] < 0.0) continue;
+    auto t0 = std::chrono::steady_clock::now();
+    // The solid's own surface (its shell and its cavities), nodes in increasing global order.
+    std::vector<char> in_solid(num_components, 0);
+    in_solid[c] = 1;
+    for (std::size_t k : cavities[c]) in_solid[k] = 1;
+    CutSurface solid;
+    std::vector<NodeId> local(surface.num_nodes, NodeId::invalid());
+    std::vector<std::size_t> solid_quad_component;
+    for (std::size_t q = 0; q < surface.num_quads(); ++q) {
+      if (in_solid[topo.quad_components[q].index()] == 0) continue;
+      solid_quad_component.push_back(topo.quad_components[q].index());
+      stc::Quad quad = surface.quads[q];
+      solid.mesh.surface.quads.push_back(quad);
+      for (NodeId v : quad) local[v.index()] = NodeId(0);
+    }
+    for (std::size_t v = 0; v < surface.num_nodes; ++v) {
+      if (!local[v].is_valid()) continue;
+      local[v] = NodeId(solid.final_id.size());
+      solid.final_id.push_back(NodeId(v));
+    }
+    for (stc::Quad& q : solid.mesh.surface.quads)
+      for (NodeId& v : q) v = local[v.index()];
+    solid.mesh.surface.num_nodes = solid.final_id.size();
+    solid.mesh.points.resize(static_cast<Eigen::Index>(solid.final_id.size()), 3);
+    for (std::size_t v = 0; v < solid.final_id.size(); ++v)
+      solid.mesh.points.row(static_cast<Eigen::Index>(v)) =
+          mesh.points.row(solid.final_id[v].value());
+
+    if (!cavities[c].empty()) {
+      // A solid with cavities: one annulus (a ladder of 4 quads) per cavity, from the
+      // boundary of a cavity quad to that of the nearest quad of the outer shell, makes it
+      // balls; they are woven together and glued back.
+      for (std::size_t k : cavities[c])
+        if (topo.components[k].genus.value_or(0) > 0)
+          throw Unsupported(ComponentId(k).str() + ": a cavity with handles is not supported yet");
+      if (topo.components[c].genus.value_or(0) > 0) {
+        throw Unsupported(ComponentId(c).str() +
+                          ": a solid with both handles and cavities is not supported yet");
+      }
+      CutSurface current = solid;
+      std::vector<char> used(solid.final_id.size(), 0);
+      const auto centroid = [&](std::size_t q) {
+        Eigen::Vector3d m = Eigen::Vector3d::Zero();
+        for (NodeId v : solid.mesh.surface.quads[q])
+          m += solid.mesh.points.row(v.value()).transpose();
+        return Eigen::Vector3d(m / 4.0);
+      };
+      const auto free_quad = [&](std::size_t q) {
+        return std::none_of(solid.mesh.surface.quads[q].begin(), solid.mesh.surface.quads[q].end(),
+                            [&](NodeId v) { return used[v.index()] != 0; });
+      };
+      for (std::size_t k : cavities[c]) {
+        double best = INFINITY;
+        std::size_t qi = 0;
+        std::size_t qo = 0;
+        for (std::size_t a = 0; a < solid_quad_component.size(); ++a) {
+          if (solid_quad_component[a] != k || !free_quad(a)) continue;
+          const Eigen::Vector3d ca = centroid(a);
+          for (std::size_t b = 0; b < solid_quad_component.size(); ++b) {
+            if (solid_quad_component[b] != c || !free_quad(b)) continue;
+            const double d = (centroid(b) - ca).squaredNorm();
+            if (d < best) {
+              best = d;
+              qi = a;
+              qo = b;
+            }
+          }
+        }
+        if (!std::isfinite(best))
+          throw Unsupported(ComponentId(k).str() + ": no free quad pair to join the cavity");
+        const stc::Quad& outer_quad = solid.mesh.surface.quads[qo];
+        const stc::Quad& inner_quad = solid.mesh.surface.quads[qi];
+        std::vector<NodeId> outer(outer_quad.begin(), outer_quad.end());
+        std::vector<NodeId> inner;
+        double best_pairing = INFINITY;
+        for (int shift = 0; shift < 4; ++shift) {
+          for (int dir : {1, -1}) {
+            std::vector<NodeId> candidate;
+            double cost = 0.0;
+            for (int p = 0; p < 4; ++p) {
+              const NodeId v =
+                  inner_quad[static_cast<std::size_t>(((shift + dir * p) % 4 + 4) % 4)];
+              candidate.push_back(v);
+              cost += (solid.mesh.points.row(v.value()) -
+                       solid.mesh.points.row(outer[static_cast<std::size_t>(p)].value()))
+                          .squaredNorm();
+            }
+            if (cost < best_pairing) {
+              best_pairing = cost;
+              inner = candidate;
+            }
+          }
+        }
+        for (NodeId v : outer) used[v.index()] = 1;
+        for (NodeId v : inner) used[v.index()] = 1;
+        current = cut_annulus(current, outer, inner);
+        HandleCut hc;
+        for (NodeId v : outer) hc.cycle.push_back(solid.final_id[v.index()]);
+        for (NodeId v : inner) hc.cycle.push_back(solid.final_id[v.index()]);
+        hc.grid_a = 1;
+        hc.grid_b = 4;  // an annulus of 1 x 4 quads
+        hc.attempts = 1;
+        rep.cuts.push_back(hc);
+      }
+      rep.cut_seconds += seconds_since(t0);
+      const stc::LoopSet loops =
+          stc::find_loops(current.mesh.surface, stc::FindLoopsOptions{false});
+      if (loops.num_self_intersecting() > 0) {
+        throw Unsupported(ComponentId(c).str() +
+                          ": cutting its cavities off gives a surface with a self-intersecting "
+                          "loop: not supported yet");
+      }
+      auto t1 = std::chrono::steady_clock::now();
+      BallWeave w = weave_ball(current, options, next_final);
+      rep.weave_seconds += seconds_since(t1);
+      t1 = std::chrono::steady_clock::now();
+      stc::HexComplex glued;
+      glued.hexes = w.hexes;
+      glued.num_nodes = next_final + w.interior;
+      const stc::ValidationReport v = stc::validate_hex_complex(glued);
+      rep.glue_seconds += seconds_since(t1);
+      if (!v.valid) {
+        throw Unsupported(ComponentId(c).str() +
+                          ": the cavity cut woven and glued back breaks "
+                          "an invariant (" +
+                          v.summary().substr(0, 200) + ")");
+      }
+      next_final += w.interior;
+      const std::size_t hex_offset = result.complex.hexes.size();
+      for (const stc::Hex& h : w.hexes) result.complex.hexes.push_back(h);
+      for (std::int32_t sh : w.woven.hex_shrink) result.hex_shrink.push_back(sh);
+      for (const std::string& r : w.woven.hex_rule) result.hex_rule.push_back(r);
+      add_stats(result.stats, w.woven.stats);
+      for (weave::TraceEvent e : w.woven.trace) {
+        if (e.hex.is_valid()) e.hex = HexId(e.hex.index() + hex_offset);
+        result.trace.push_back(std::move(e));
+      }
+      continue;
+    }
+
+    const int genus = topo.components[c].genus.value_or(0);
+    std::vector<std::vector<NodeId>> cycles;
+    std::vector<std::vector<std::vector<NodeId>>> fallbacks;
+    if (genus > 0) {
+      const HandleDiagnosis h = diagnose_handles(solid.mesh);
+      if (!h.decided) {
+        throw Unsupported(ComponentId(c).str() +
+                          ": cannot tell which cycles bound inside the "
+                          "solid (" +
+                          h.undecided_reason + "), so its handles cannot be cut");
+      }
+      if (h.handles.size() != static_cast<std::size_t>(genus)) {
+        throw Unsupported(ComponentId(c).str() + ": " +
+                          std::to_string(genus - static_cast<int>(h.handles.size())) +
+                          " of its handle cycles have no simple representative: cutting them is "
+                          "not supported yet");
+      }
+      if (!h.all_even()) {
+        throw TopologyError(ComponentId(c).str() +
+                            ": a handle cycle has odd length: no hex "
+                            "mesh with this boundary exists");
+      }
+      std::vector<char> used(solid.final_id.size(), 0);
+      for (const HandleCycle& hc : h.handles) {
+        for (NodeId v : hc.nodes) {
+          if (used[v.index()] != 0) {
+            throw Unsupported(ComponentId(c).str() + ": its handle cycles share node " +
+                              solid.final_id[v.index()].str() +
+                              ": cutting handles whose cycles touch is not supported yet");
+          }
+          used[v.index()] = 1;
+        }
+        cycles.push_back(hc.nodes);
+      }
+      // Fallbacks: one handle's cycle replaced by another of its class, when disjoint from
+      // the other handles' cycles.
+      for (std::size_t k = 0; k < h.alternatives.size(); ++k) {
+        for (const HandleCycle& alt : h.alternatives[k]) {
+          std::vector<char> other(solid.final_id.size(), 0);
+          for (std::size_t j = 0; j < cycles.size(); ++j)
+            if (j != k)
+              for (NodeId v : cycles[j]) other[v.index()] = 1;
+          if (std::any_of(alt.nodes.begin(), alt.nodes.end(),
+                          [&](NodeId v) { return other[v.index()] != 0; }))
+            continue;
+          std::vector<std::vector<NodeId>> set = cycles;
+          set[k] = alt.nodes;
+          fallbacks.push_back(std::move(set));
+        }
+      }
+    }
+    rep.cut_seconds += seconds_since(t0);
+
+    // Cut the handles one after the other (the cycles are disjoint, so their node ids stay
+    // valid through the earlier cuts): a depth-first search over the disc choices of each
+    // cut, pruned by loop cleanliness after every cut, where the last cut is checked by
+    // weaving and gluing; within a budget of loop checks and of weaves.
+    std::optional<BallWeave> ball;
+    std::vector<HandleCut> cuts(cycles.size());
+    std::size_t loop_checks = 0;
+    std::size_t self_intersecting_cuts = 0;
+    std::size_t weaves = 0;
+    std::string failures;
+    const auto note = [&](const DiscChoice& choice, std::size_t k, const std::string& why) {
+      if (failures.size() > 600) return;
+      failures += "; cut " + std::to_string(k + 1) + ", " + std::to_string(choice.a) + "x" +
+                  std::to_string(choice.b) + (choice.ring ? " O-grid" : "") +
+                  " disc from position " + std::to_string(choice.start) + ": " + why;
+    };
+    const std::function<bool(const CutSurface&, std::size_t, std::size_t)> search =
+        [&](const CutSurface& current, std::size_t k, std::size_t final_start) -> bool {
+      if (weaves >= cut_options.max_disc_attempts || loop_checks >= cut_options.max_loop_checks)
+        return false;
+      auto t1 = std::chrono::steady_clock::now();
+      const std::vector<DiscChoice> choices = disc_choices(current.mesh.points, cycles[k]);
+      rep.cut_seconds += seconds_since(t1);
+      HandleCut& hc = cuts[k];
+      hc.cycle.clear();
+      for (NodeId v : cycles[k]) hc.cycle.push_back(current.final_id[v.index()]);
+      const bool last = k + 1 == cycles.size();
+      for (const DiscChoice& choice : choices) {
+        if (weaves >= cut_options.max_disc_attempts || loop_checks >= cut_options.max_loop_checks)
+          return false;
+        ++hc.attempts;
+        t1 = std::chrono::steady_clock::now();
+        std::size_t trial_final = final_start;
+        CutSurface cut = cut_along(current, cycles[k], choice, &trial_final);
+        const stc::LoopSet loops = stc::find_loops(cut.mesh.surface, stc::FindLoopsOptions{false});
+        ++loop_checks;
+        rep.cut_seconds += seconds_since(t1);
+        if (loops.num_self_intersecting() > 0) {
+          ++self_intersecting_cuts;
+          continue;
+        }
+        hc.grid_a = choice.a;
+        hc.grid_b = choice.b;
+        if (!last) {
+          if (search(cut, k + 1, trial_final)) return true;
+          continue;
+        }
+        t1 = std::chrono::steady_clock::now();
+        ++weaves;
+        try {
+          BallWeave w = weave_ball(cut, options, trial_final);
+          rep.weave_seconds += seconds_since(t1);
+          t1 = std::chrono::steady_clock::now();
+          stc::HexComplex glued;
+          glued.hexes = w.hexes;
+          glued.num_nodes = trial_final + w.interior;
+          const stc::ValidationReport v = stc::validate_hex_complex(glued);
+          rep.glue_seconds += seconds_since(t1);
+          if (!v.valid) {
+            note(choice, k, "glued complex invalid (" + v.summary().substr(0, 120) + ")");
+            continue;
+          }
+          next_final = trial_final;
+          ball = std::move(w);
+          return true;
+        } catch (const WeaveError&) {
+          rep.weave_seconds += seconds_since(t1);
+          note(choice, k, "weave blocked");
+        } catch (const InvalidInput& e) {
+          // The weave refused the cut surface as a front (a bug of the cut, or a pinch):
+          // another choice may do.
+          rep.weave_seconds += seconds_since(t1);
+          note(choice, k, std::string("the weave refused the cut surface: ") + e.what());
+        }
+      }
+      return false;
+    };
+    if (cycles.empty()) {
+      auto t1 = std::chrono::steady_clock::now();
+      ball = weave_ball(solid, options, next_final);
+      rep.weave_seconds += seconds_since(t1);
+    } else if (const auto primary = cycles;
+               !search(solid, 0, next_final) &&
+               !std::any_of(fallbacks.begin(), fallbacks.end(), [&](const auto& set) {
+                 cycles = set;
+                 return search(solid, 0, next_final);
+               })) {
+      cycles = primary;
+      std::string names;
+      for (std::size_t k = 0; k < cycles.size(); ++k) {
+        names += (k > 0 ? ", " : "");
+        for (std::size_t i = 0; i < cycles[k].size() && i < 8; ++i)
+          names += (i > 0 ? "-" : "") + solid.final_id[cycles[k][i].index()].str();
+        names +=
+            (cycles[k].size() > 8 ? "-... (" : " (") + std::to_string(cycles[k].size()) + " edges)";
+      }
+      throw Unsupported(ComponentId(c).str() +
+                        ": no choice of discs spanning the handle "
+                        "cycles " +
+                        names + " could be woven and glued (" + std::to_string(loop_checks) +
+                        " cuts tried, " + std::to_string(self_intersecting_cuts) +
+                        " with a self-intersecting loop, " + std::to_string(weaves) + " woven" +
+                        (failures.size() > 600 ? failures.substr(0, 600) + "..." : failures) +
+                        "); docs/topology.md says what the disc choice needs");
+    }
+    for (HandleCut& hc : cuts) rep.cuts.push_back(std::move(hc));
+    next_final += ball->interior;
+    const std::size_t hex_offset = result.complex.hexes.size();
+    for (const stc::Hex& h : ball->hexes) result.complex.hexes.push_back(h);
+    for (std::int32_t s : ball->woven.hex_shrink) result.hex_shrink.push_back(s);
+    for (const std::string& r : ball->woven.hex_rule) result.hex_rule.push_back(r);
+    add_stats(result.stats, ball->woven.stats);
+    for (weave::TraceEvent e : ball->woven.trace) {
+      if (e.hex.is_valid()) e.hex = HexId(e.hex.index() + hex_offset);
+      result.trace.push_back(std::move(e));
+    }
+  }
+  const auto t2 = std::chrono::steady_clock::now();
+  // Interior nodes were numbered solid by solid (discs first, then the weave's); the weave's
+  // own numbering of a solid follows its disc nodes, so the ids are dense.
+  result.complex.num_nodes = next_final;
+  result.dual = dual_of(result.complex, surface);
+  rep.glue_seconds += seconds_since(t2);
+  return result;
+}
+
+}  // namespace stcweave::primal
