@@ -109,7 +109,9 @@ std::string last_message(const fs::path& log) {
 bool mentions_out_of_memory(const std::string& text) {
   return text.find("bad_alloc") != std::string::npos ||
          text.find("Cannot allocate memory") != std::string::npos ||
-         text.find("out of memory") != std::string::npos;
+         text.find("out of memory") != std::string::npos ||
+         // the dynamic loader could not map a shared library within the address-space limit
+         text.find("failed to map segment") != std::string::npos;
 }
 
 void write_text_atomically(const fs::path& path, const std::string& text) {

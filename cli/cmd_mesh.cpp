@@ -280,7 +280,9 @@ int run_mesh(const MeshArgs& a) {
   const bool inverted_left = a.fail_on_inverted && r.quality.inverted > 0;
   const bool write_mesh = !inverted_left || a.keep_invalid;
   const auto t1 = std::chrono::steady_clock::now();
-  const primal::WeaveHistory history = primal::weave_history(r.woven, digest.get());
+  primal::WeaveHistory history = primal::weave_history(r.woven, digest.get());
+  // The pillow stage appends its hexes after the woven ones.
+  if (r.pillow.applied) primal::append_hexes(history, r.mesh.complex.hexes.size(), "pillow");
   const primal::MeshData cell_data =
       want_cell_data ? primal::hex_mesh_data(r.mesh, stc, &history) : primal::MeshData{};
   if (write_mesh)

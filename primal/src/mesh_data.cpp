@@ -43,6 +43,7 @@ int rule_code(std::string_view rule) {
   if (rule == "cross-relaxed") return kRuleCrossRelaxed;
   if (rule == "blind-chord") return kRuleBlindChord;
   if (rule == "parallel-merge") return kRuleParallelMerge;
+  if (rule == "pillow") return kRulePillow;
   return kRuleOther;
 }
 
@@ -56,6 +57,8 @@ std::string_view rule_name(int code) {
       return "blind-chord";
     case kRuleParallelMerge:
       return "parallel-merge";
+    case kRulePillow:
+      return "pillow";
     default:
       return "other";
   }
@@ -136,6 +139,17 @@ WeaveHistory weave_history(const weave::WeaveResult& woven, const TraceDigest* d
   for (std::size_t i = 0; i < std::min(m, nodes.size()); ++i) h.hex_node[i] = nodes[i];
   h.shrinks = digest->shrinks();
   return h;
+}
+
+void append_hexes(WeaveHistory& history, std::size_t hexes, const std::string& rule) {
+  if (history.hex_shrink.size() > hexes) {
+    throw InvalidInput("weave history: it covers " + std::to_string(history.hex_shrink.size()) +
+                       " hexes, more than the " + std::to_string(hexes) +
+                       " of the mesh; pass the history of the weave that made it");
+  }
+  history.hex_shrink.resize(hexes, -1);
+  history.hex_rule.resize(hexes, rule);
+  history.hex_node.resize(hexes, NodeId::invalid());
 }
 
 std::vector<std::array<std::int32_t, 6>> hex_face_neighbours(const stc::HexComplex& complex) {

@@ -146,10 +146,25 @@ TEST(MeshData, WeaveHistoryOfARealWeave) {
 }
 
 TEST(MeshData, RuleCodes) {
-  for (const char* name : {"cross", "cross-relaxed", "blind-chord", "parallel-merge"})
+  for (const char* name : {"cross", "cross-relaxed", "blind-chord", "parallel-merge", "pillow"})
     EXPECT_EQ(rule_name(rule_code(name)), name);
   EXPECT_EQ(rule_code("some-new-rule"), kRuleOther);
   EXPECT_EQ(rule_name(42), "other");
+}
+
+TEST(MeshData, AppendedHexesExtendTheHistoryAndFewerAreRefused) {
+  WeaveHistory h;
+  h.hex_shrink = {0, 1};
+  h.hex_rule = {"cross", "blind-chord"};
+  h.hex_node = {NodeId(3), NodeId(4)};
+  append_hexes(h, 5, "pillow");
+  ASSERT_EQ(h.hex_shrink.size(), 5u);
+  EXPECT_EQ(h.hex_shrink[1], 1);
+  EXPECT_EQ(h.hex_shrink[4], -1);
+  EXPECT_EQ(h.hex_rule[4], "pillow");
+  EXPECT_EQ(h.hex_node[0], NodeId(3));
+  EXPECT_FALSE(h.hex_node[4].is_valid());
+  EXPECT_THROW(append_hexes(h, 3, "pillow"), InvalidInput);
 }
 
 /// A mesh with data of both types, values that need all 17 digits, negative integers.

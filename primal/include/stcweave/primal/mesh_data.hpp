@@ -67,6 +67,8 @@ inline constexpr int kRuleCross = 0;
 inline constexpr int kRuleCrossRelaxed = 1;
 inline constexpr int kRuleBlindChord = 2;
 inline constexpr int kRuleParallelMerge = 3;
+/// A hex the pillow stage added after the weave (pillow.hpp).
+inline constexpr int kRulePillow = 4;
 inline constexpr int kRuleOther = 9;
 /// The code of a weave rule name (`"cross"` -> 0, ...; an unknown name -> `kRuleOther`).
 [[nodiscard]] int rule_code(std::string_view rule);
@@ -118,6 +120,11 @@ class TraceDigest {
 ///        per hex.
 [[nodiscard]] WeaveHistory weave_history(const weave::WeaveResult& woven,
                                          const TraceDigest* digest = nullptr);
+
+/// Extends `history` to `hexes` hexes with the hexes a later stage appended after the woven
+/// ones (the pillow stage appends its hexes, `MeshResult::mesh`): shrink -1, rule `rule`, no
+/// node. \throw InvalidInput when `history` already covers more than `hexes` hexes.
+void append_hexes(WeaveHistory& history, std::size_t hexes, const std::string& rule);
 
 /// For each hex and face (`stc::kHexFaces` order), the hex across that face, -1 on the
 /// boundary, -2 when three or more hexes share the face. Deterministic (a sort of faces).
