@@ -5,6 +5,10 @@
 
 #include <algorithm>
 
+#include <limits>
+#include <numeric>
+
+#include "bounded.hpp"
 #include "stcweave/weave/select.hpp"
 
 namespace stcweave::weave {
@@ -40,6 +44,14 @@ FrontComponents front_components(const Front& front, Marks& marks) {
 
 std::array<TraceCandidate, 2> weigh(const Front& front, const Strip& strip,
                                     const FrontComponents& components, Marks& nodes, Marks& faces) {
+  return weigh_within(front, strip, components, nodes, faces, {kNoLimit, kNoLimit}, nullptr);
+}
+
+std::array<TraceCandidate, 2> weigh_within(const Front& front, const Strip& strip,
+                                           const FrontComponents& components, Marks& nodes,
+                                           Marks& faces, std::array<std::size_t, 2> limit,
+                                           bool* pruned) {
+  if (pruned != nullptr) *pruned = false;
   std::array<TraceCandidate, 2> c;
   c[0].side = 0;
   c[1].side = 1;
@@ -97,9 +109,23 @@ std::array<TraceCandidate, 2> weigh(const Front& front, const Strip& strip,
       }
     }
   };
+  // A side cannot win once the nodes it reached exceed its limit (every node reached is
+  // counted in its weight, met or not); a loop none of whose sides can win is left here.
+  const bool bounded = pruned != nullptr && !self_intersecting;
+  const auto beyond = [&] {
+    return on_strip + count[0] > limit[0] && on_strip + count[1] > limit[1];
+  };
+  if (bounded && beyond()) {
+    *pruned = true;
+    return c;
+  }
   while (!met && !stack[0].empty() && !stack[1].empty()) {
     expand(0);
     if (!met && !stack[1].empty()) expand(1);
+    if (bounded && beyond()) {
+      *pruned = true;
+      return c;
+    }
   }
   if (!met) {
     const auto done = static_cast<std::size_t>(stack[0].empty() ? 0 : 1);
@@ -254,6 +280,64 @@ std::vector<TraceCandidate> loop_candidates(const Front& front, const FrontLoops
       out.push_back(c);
     }
   }
+  return out;
+}
+
+std::vector<TraceCandidate> loop_candidates_bounded(const Front& front, const FrontLoops& loops,
+                                                    const FrontComponents& components, Marks& nodes,
+                                                    Marks& faces, std::size_t& hint) {
+  const std::size_t n = loops.strips.size();
+  std::vector<TraceCandidate> out(n * 2);
+  // The best so far among loops that do not cross themselves: its weight and its index in the
+  // enumeration (side A of loop l is 2l, side B 2l + 1). A later candidate wins only with a
+  // smaller weight, an earlier one also with an equal weight (the ranking's sort is stable).
+  std::size_t best = kNoLimit;
+  std::size_t best_index = kNoLimit;
+  // Passes with a cap on every flood, doubled until the best weight is within it: a loop
+  // stopped by the cap weighs more than the cap, so more than that best, and loses.
+  std::vector<std::size_t> pending(n);
+  std::iota(pending.begin(), pending.end(), std::size_t{0});
+  std::size_t shortest = kNoLimit;
+  for (const Strip& s : loops.strips) shortest = std::min(shortest, s.size());
+  std::size_t cap = hint != 0 && hint != kNoLimit ? hint : 4 * std::max<std::size_t>(1, shortest);
+  std::vector<std::size_t> next;
+  while (!pending.empty()) {
+    next.clear();
+    for (std::size_t l : pending) {
+      std::array<std::size_t, 2> limit{cap, cap};
+      if (best != kNoLimit) {
+        for (std::size_t d = 0; d < 2; ++d) {
+          // wins with weight <= limit (best is at least the strip's node count, never 0)
+          const std::size_t wins = 2 * l + d < best_index ? best : best - 1;
+          limit[d] = std::min(limit[d], wins);
+        }
+      }
+      bool pruned = false;
+      std::array<TraceCandidate, 2> pair =
+          weigh_within(front, loops.strips[l], components, nodes, faces, limit, &pruned);
+      for (std::size_t d = 0; d < 2; ++d) {
+        TraceCandidate& c = pair[d];
+        c.loop = static_cast<std::int32_t>(l);
+        if (pruned) {
+          c.weight = kNoLimit;
+          c.strictly_on_side = 0;
+        } else if (!c.self_intersecting) {
+          const std::size_t index = 2 * l + d;
+          if (c.weight < best || (c.weight == best && index < best_index)) {
+            best = c.weight;
+            best_index = index;
+          }
+        }
+        out[2 * l + d] = c;
+      }
+      if (pruned) next.push_back(l);
+    }
+    if (best <= cap || cap >= front.num_nodes()) break;  // beyond the node count: no cap
+    // with a best known, its weight bounds every flood that is left
+    cap = best != kNoLimit ? best : 2 * cap;
+    pending.swap(next);
+  }
+  hint = best;
   return out;
 }
 
