@@ -185,7 +185,9 @@ std::array<TraceCandidate, 2> extended_properties(const Front& front, const Stri
                                                   const FrontComponents& components,
                                                   const ExtendedParameters& par, Marks& nodes,
                                                   Marks& faces, Marks& faces2) {
-  std::array<TraceCandidate, 2> c = weigh(front, strip, components, nodes, faces);
+  // The reliable weights come from the two side floods below when they settle them (see the
+  // end); `weigh` is called only otherwise.
+  std::array<TraceCandidate, 2> c;
   const FaceSet strip_faces = mark_strip_faces(faces, front, strip);
   std::vector<FaceIndex> strip_face_list;
   strip_face_list.reserve(strip.size());
@@ -193,6 +195,9 @@ std::array<TraceCandidate, 2> extended_properties(const Front& front, const Stri
   std::sort(strip_face_list.begin(), strip_face_list.end());
   const auto strip_face_count = static_cast<std::size_t>(
       std::unique(strip_face_list.begin(), strip_face_list.end()) - strip_face_list.begin());
+  std::array<std::vector<NodeId>, 2> side_nodes;  // strictly on each side, from its flood
+  std::uint32_t last_seen = 0;                    // the stamp of side B's flood
+  std::size_t on_strip = 0;
   std::size_t crossed = 0;
   std::array<std::size_t, 2> side_sharp{0, 0};
   std::array<std::size_t, 2> nonconvex{0, 0};
@@ -210,8 +215,15 @@ std::array<TraceCandidate, 2> extended_properties(const Front& front, const Stri
     // Flood side d from its strip nodes through non-strip faces: faces on that side, their
     // depths and their non-convex edges (each edge counted once).
     const std::uint32_t node_seen = nodes.fresh(front.num_nodes());
-    for (const stc::StripStep& p : strip)
-      for (NodeId m : front.face(face_of(p)).nodes) nodes.set(m.index(), node_seen);
+    last_seen = node_seen;
+    on_strip = 0;
+    for (const stc::StripStep& p : strip) {
+      for (NodeId m : front.face(face_of(p)).nodes) {
+        if (nodes.is(m.index(), node_seen)) continue;
+        nodes.set(m.index(), node_seen);
+        ++on_strip;
+      }
+    }
     std::vector<NodeId> stack;
     for (const stc::StripStep& p : strip) {
       const stc::Quad& n = front.face(face_of(p)).nodes;
@@ -231,6 +243,7 @@ std::array<TraceCandidate, 2> extended_properties(const Front& front, const Stri
           if (nodes.is(m.index(), node_seen)) continue;
           nodes.set(m.index(), node_seen);
           stack.push_back(m);
+          side_nodes[di].push_back(m);
         }
       }
     }
@@ -250,6 +263,35 @@ std::array<TraceCandidate, 2> extended_properties(const Front& front, const Stri
     x.crossed_sharp = crossed;
     x.side_sharp = side_sharp[di];
     x.nonconvex_on_side = nonconvex[di];
+  }
+  // `weigh` counts a side by its flood too, except when its bidirectional flood stops at the
+  // side it exhausts first and counts the other as the rest of the component. The two agree
+  // when the loop does not cross itself, no node is on both sides and the sides and the strip
+  // make up the component: then its floods cannot meet and the rest is the other side.
+  const std::size_t total =
+      components.size[components.component_of[front.face(face_of(strip.front())).nodes[0].index()]];
+  const bool disjoint = std::none_of(side_nodes[0].begin(), side_nodes[0].end(),
+                                     [&](NodeId m) { return nodes.is(m.index(), last_seen); });
+  if (strip_face_count == strip.size() && disjoint &&
+      side_nodes[0].size() + side_nodes[1].size() + on_strip == total) {
+    for (std::size_t d = 0; d < 2; ++d) {
+      c[d].side = static_cast<int>(d);
+      c[d].length = strip.size();
+      c[d].self_intersecting = false;
+      c[d].on_strip = on_strip;
+      c[d].strictly_on_side = side_nodes[d].size();
+      c[d].weight = c[d].strictly_on_side + on_strip;
+    }
+  } else {
+    const std::array<TraceCandidate, 2> w = weigh(front, strip, components, nodes, faces);
+    for (std::size_t d = 0; d < 2; ++d) {
+      c[d].side = w[d].side;
+      c[d].length = w[d].length;
+      c[d].self_intersecting = w[d].self_intersecting;
+      c[d].on_strip = w[d].on_strip;
+      c[d].strictly_on_side = w[d].strictly_on_side;
+      c[d].weight = w[d].weight;
+    }
   }
   return c;
 }
