@@ -133,6 +133,10 @@ bool shrink_a_candidate(WeaveState& state, WeaveContext& ctx, const FrontLoops& 
 
 /// With `check`: the bounded ranking's first candidate is the full ranking's.
 void check_bounded(const Ranking& bounded, const Ranking& full) {
+  if (bounded.order.size() != full.order.size())
+    throw InternalError("weave: the bounded selection has " + std::to_string(bounded.order.size()) +
+                        " candidates, not " + std::to_string(full.order.size()));
+  if (full.order.empty()) return;
   const TraceCandidate& b = bounded.order.front();
   const TraceCandidate& f = full.order.front();
   if (b.loop != f.loop || b.side != f.side || b.weight != f.weight ||
