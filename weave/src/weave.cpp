@@ -27,7 +27,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
+#include "select/bounded.hpp"
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/weave/kernel.hpp"
 #include "stcweave/weave/rules.hpp"
@@ -71,9 +73,13 @@ std::size_t rule_budget(const stc::QuadSurface& surface, const WeaveOptions& opt
 /// blocked is undone (a checkpoint of the state is taken before it) and the next candidate is
 /// tried; when every candidate fails from this front, the first one's partial shrink is kept (the
 /// front changed, so the selection starts again) as the last resort. False when nothing changed;
-/// `failures` then says why for each candidate.
+/// `failures` then says why for each candidate. When `exact` is set, only the first candidate
+/// of `ranking` is known (select/bounded.hpp): after it fails on an unchanged front, `exact`
+/// gives the full ranking of that front.
 bool shrink_a_candidate(WeaveState& state, WeaveContext& ctx, const FrontLoops& loops,
-                        const Ranking& ranking, std::string& failures) {
+                        Ranking ranking, std::string& failures,
+                        const std::function<Ranking()>& exact = {}) {
+  bool partial = static_cast<bool>(exact);
   const std::vector<TraceCandidate>& candidates = ranking.order;
   const bool backtrack = ctx.options.backtrack;
   for (std::size_t attempt = 0; attempt < (backtrack ? 2U : 1U); ++attempt) {
@@ -113,12 +119,34 @@ bool shrink_a_candidate(WeaveState& state, WeaveContext& ctx, const FrontLoops& 
       if (saved) {
         state.roll_back(std::move(*saved));
         ++state.stats.rolled_back_shrinks;
-        continue;
+      } else if (ctx.rules_applied != before) {
+        return true;  // the front changed: select again
       }
-      if (ctx.rules_applied != before) return true;  // the front changed: select again
+      if (partial) {  // the front is the selection's again: rank every candidate
+        ranking = exact();
+        partial = false;
+      }
     }
   }
   return false;
+}
+
+/// With `check`: the bounded ranking's first candidate is the full ranking's.
+void check_bounded(const Ranking& bounded, const Ranking& full) {
+  if (bounded.order.size() != full.order.size())
+    throw InternalError("weave: the bounded selection has " + std::to_string(bounded.order.size()) +
+                        " candidates, not " + std::to_string(full.order.size()));
+  if (full.order.empty()) return;
+  const TraceCandidate& b = bounded.order.front();
+  const TraceCandidate& f = full.order.front();
+  if (b.loop != f.loop || b.side != f.side || b.weight != f.weight ||
+      b.strictly_on_side != f.strictly_on_side || b.on_strip != f.on_strip ||
+      bounded.reason != full.reason || bounded.decided_by != full.decided_by) {
+    throw InternalError("weave: the bounded selection chose loop " + std::to_string(b.loop) +
+                        " side " + "AB"[b.side] + " (weight " + std::to_string(b.weight) +
+                        ") where every weight gives loop " + std::to_string(f.loop) + " side " +
+                        "AB"[f.side] + " (weight " + std::to_string(f.weight) + ")");
+  }
 }
 
 /// The result: canonical node ids, input nodes unchanged, interior nodes compacted in order of
@@ -167,6 +195,7 @@ WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options,
   for (std::size_t n = state.front.num_nodes(); n-- > 0;) state.seam_work.push_back(NodeId(n));
   seam_fixpoint(state, ctx);
 
+  std::size_t best_weight = 0;  // the last bounded selection's, where the next one starts
   while (state.front.num_faces() > 0) {
     // Fig. 15, "apply the non-convexity seam rule if necessary".
     if (extended && par.nonconvexity_seam && nonconvexity_seams(state, ctx) > 0 &&
@@ -176,8 +205,16 @@ WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options,
     // "Compute the loop properties to get S": two candidates per loop, side A and side B.
     const FrontLoops loops = front_loops(state.front);
     const FrontComponents components = front_components(state.front, ctx.nodes);
-    std::vector<TraceCandidate> candidates = loop_candidates(
-        state.front, loops, components, selection.geometric, par, ctx.nodes, ctx.faces, ctx.faces2);
+    const auto all_candidates = [&] {
+      return loop_candidates(state.front, loops, components, selection.geometric, par, ctx.nodes,
+                             ctx.faces, ctx.faces2);
+    };
+    // Branch and bound (select/bounded.hpp) when only the first candidate is read.
+    const bool bounded = !extended && !options.selection && observer == nullptr;
+    std::vector<TraceCandidate> candidates =
+        bounded ? loop_candidates_bounded(state.front, loops, components, ctx.nodes, ctx.faces,
+                                          best_weight)
+                : all_candidates();
 
     // "Apply the parallel merging filter": it closes a layer by itself and starts again.
     if (extended && par.parallel_merging &&
@@ -186,12 +223,15 @@ WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options,
 
     // The high-level filters rank the candidates (parallel crossing, non-convex, depth,
     // first and second convex, topological; or the reliable weight).
-    const Ranking ranking = rank(selection, std::move(candidates));
+    Ranking ranking = rank(selection, std::move(candidates));
     ++state.stats.selections;
+    const auto exact = [&] { return rank(selection, all_candidates()); };
+    if (bounded && options.check) check_bounded(ranking, exact());
 
     // "Shrink the loop", falling back to the next candidates when it is blocked.
     std::string failures;
-    if (!shrink_a_candidate(state, ctx, loops, ranking, failures)) {
+    if (!shrink_a_candidate(state, ctx, loops, std::move(ranking), failures,
+                            bounded ? std::function<Ranking()>(exact) : nullptr)) {
       throw WeaveError("weave: every (loop, side) is blocked with " +
                        std::to_string(state.front.num_faces()) + " front faces left and " +
                        std::to_string(state.woven.hexes.size()) + " hexes built:" + failures);

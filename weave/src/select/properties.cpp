@@ -4,10 +4,29 @@
 /// that side (4.4) and the loop it runs parallel to (4.5).
 
 #include <algorithm>
+#include <cmath>
 
+#include <limits>
+#include <numeric>
+
+#include "bounded.hpp"
 #include "stcweave/weave/select.hpp"
 
 namespace stcweave::weave {
+namespace {
+
+/// `edge_angle(front, f, side)` (rules/propagate.cpp) with the face across, `g`, already
+/// found: the same arithmetic, one incidence search fewer. Keep the two identical.
+double angle_across(const Front& front, FaceIndex f, int side, FaceSide g) {
+  const double a = front.face(f).side_angle[static_cast<std::size_t>(side)];
+  if (g.face == kNoFace) return a;
+  const double b = front.face(g.face).side_angle[static_cast<std::size_t>(g.index)];
+  const double da = a - 180.0, db = b - 180.0;
+  if ((da >= 0.0) == (db >= 0.0)) return 180.0 + (std::abs(da) >= std::abs(db) ? da : db);
+  return 180.0 + da + db;
+}
+
+}  // namespace
 
 FrontComponents front_components(const Front& front, Marks& marks) {
   FrontComponents out;
@@ -40,6 +59,14 @@ FrontComponents front_components(const Front& front, Marks& marks) {
 
 std::array<TraceCandidate, 2> weigh(const Front& front, const Strip& strip,
                                     const FrontComponents& components, Marks& nodes, Marks& faces) {
+  return weigh_within(front, strip, components, nodes, faces, {kNoLimit, kNoLimit}, nullptr);
+}
+
+std::array<TraceCandidate, 2> weigh_within(const Front& front, const Strip& strip,
+                                           const FrontComponents& components, Marks& nodes,
+                                           Marks& faces, std::array<std::size_t, 2> limit,
+                                           bool* pruned) {
+  if (pruned != nullptr) *pruned = false;
   std::array<TraceCandidate, 2> c;
   c[0].side = 0;
   c[1].side = 1;
@@ -97,9 +124,23 @@ std::array<TraceCandidate, 2> weigh(const Front& front, const Strip& strip,
       }
     }
   };
+  // A side cannot win once the nodes it reached exceed its limit (every node reached is
+  // counted in its weight, met or not); a loop none of whose sides can win is left here.
+  const bool bounded = pruned != nullptr && !self_intersecting;
+  const auto beyond = [&] {
+    return on_strip + count[0] > limit[0] && on_strip + count[1] > limit[1];
+  };
+  if (bounded && beyond()) {
+    *pruned = true;
+    return c;
+  }
   while (!met && !stack[0].empty() && !stack[1].empty()) {
     expand(0);
     if (!met && !stack[1].empty()) expand(1);
+    if (bounded && beyond()) {
+      *pruned = true;
+      return c;
+    }
   }
   if (!met) {
     const auto done = static_cast<std::size_t>(stack[0].empty() ? 0 : 1);
@@ -144,7 +185,9 @@ std::array<TraceCandidate, 2> extended_properties(const Front& front, const Stri
                                                   const FrontComponents& components,
                                                   const ExtendedParameters& par, Marks& nodes,
                                                   Marks& faces, Marks& faces2) {
-  std::array<TraceCandidate, 2> c = weigh(front, strip, components, nodes, faces);
+  // The reliable weights come from the two side floods below when they settle them (see the
+  // end); `weigh` is called only otherwise.
+  std::array<TraceCandidate, 2> c;
   const FaceSet strip_faces = mark_strip_faces(faces, front, strip);
   std::vector<FaceIndex> strip_face_list;
   strip_face_list.reserve(strip.size());
@@ -152,6 +195,9 @@ std::array<TraceCandidate, 2> extended_properties(const Front& front, const Stri
   std::sort(strip_face_list.begin(), strip_face_list.end());
   const auto strip_face_count = static_cast<std::size_t>(
       std::unique(strip_face_list.begin(), strip_face_list.end()) - strip_face_list.begin());
+  std::array<std::vector<NodeId>, 2> side_nodes;  // strictly on each side, from its flood
+  std::uint32_t last_seen = 0;                    // the stamp of side B's flood
+  std::size_t on_strip = 0;
   std::size_t crossed = 0;
   std::array<std::size_t, 2> side_sharp{0, 0};
   std::array<std::size_t, 2> nonconvex{0, 0};
@@ -169,8 +215,15 @@ std::array<TraceCandidate, 2> extended_properties(const Front& front, const Stri
     // Flood side d from its strip nodes through non-strip faces: faces on that side, their
     // depths and their non-convex edges (each edge counted once).
     const std::uint32_t node_seen = nodes.fresh(front.num_nodes());
-    for (const stc::StripStep& p : strip)
-      for (NodeId m : front.face(face_of(p)).nodes) nodes.set(m.index(), node_seen);
+    last_seen = node_seen;
+    on_strip = 0;
+    for (const stc::StripStep& p : strip) {
+      for (NodeId m : front.face(face_of(p)).nodes) {
+        if (nodes.is(m.index(), node_seen)) continue;
+        nodes.set(m.index(), node_seen);
+        ++on_strip;
+      }
+    }
     std::vector<NodeId> stack;
     for (const stc::StripStep& p : strip) {
       const stc::Quad& n = front.face(face_of(p)).nodes;
@@ -190,6 +243,7 @@ std::array<TraceCandidate, 2> extended_properties(const Front& front, const Stri
           if (nodes.is(m.index(), node_seen)) continue;
           nodes.set(m.index(), node_seen);
           stack.push_back(m);
+          side_nodes[di].push_back(m);
         }
       }
     }
@@ -200,7 +254,7 @@ std::array<TraceCandidate, 2> extended_properties(const Front& front, const Stri
       for (int k = 0; k < 4; ++k) {
         const FaceSide g = front.across(f, k);
         const bool once = g.face == kNoFace || strip_faces.contains(g.face) || f < g.face;
-        if (once && edge_angle(front, f, k) > par.flat) ++nonconvex[di];
+        if (once && angle_across(front, f, k, g) > par.flat) ++nonconvex[di];
       }
     }
     TraceCandidate& x = c[di];
@@ -209,6 +263,35 @@ std::array<TraceCandidate, 2> extended_properties(const Front& front, const Stri
     x.crossed_sharp = crossed;
     x.side_sharp = side_sharp[di];
     x.nonconvex_on_side = nonconvex[di];
+  }
+  // `weigh` counts a side by its flood too, except when its bidirectional flood stops at the
+  // side it exhausts first and counts the other as the rest of the component. The two agree
+  // when the loop does not cross itself, no node is on both sides and the sides and the strip
+  // make up the component: then its floods cannot meet and the rest is the other side.
+  const std::size_t total =
+      components.size[components.component_of[front.face(face_of(strip.front())).nodes[0].index()]];
+  const bool disjoint = std::none_of(side_nodes[0].begin(), side_nodes[0].end(),
+                                     [&](NodeId m) { return nodes.is(m.index(), last_seen); });
+  if (strip_face_count == strip.size() && disjoint &&
+      side_nodes[0].size() + side_nodes[1].size() + on_strip == total) {
+    for (std::size_t d = 0; d < 2; ++d) {
+      c[d].side = static_cast<int>(d);
+      c[d].length = strip.size();
+      c[d].self_intersecting = false;
+      c[d].on_strip = on_strip;
+      c[d].strictly_on_side = side_nodes[d].size();
+      c[d].weight = c[d].strictly_on_side + on_strip;
+    }
+  } else {
+    const std::array<TraceCandidate, 2> w = weigh(front, strip, components, nodes, faces);
+    for (std::size_t d = 0; d < 2; ++d) {
+      c[d].side = w[d].side;
+      c[d].length = w[d].length;
+      c[d].self_intersecting = w[d].self_intersecting;
+      c[d].on_strip = w[d].on_strip;
+      c[d].strictly_on_side = w[d].strictly_on_side;
+      c[d].weight = w[d].weight;
+    }
   }
   return c;
 }
@@ -254,6 +337,64 @@ std::vector<TraceCandidate> loop_candidates(const Front& front, const FrontLoops
       out.push_back(c);
     }
   }
+  return out;
+}
+
+std::vector<TraceCandidate> loop_candidates_bounded(const Front& front, const FrontLoops& loops,
+                                                    const FrontComponents& components, Marks& nodes,
+                                                    Marks& faces, std::size_t& hint) {
+  const std::size_t n = loops.strips.size();
+  std::vector<TraceCandidate> out(n * 2);
+  // The best so far among loops that do not cross themselves: its weight and its index in the
+  // enumeration (side A of loop l is 2l, side B 2l + 1). A later candidate wins only with a
+  // smaller weight, an earlier one also with an equal weight (the ranking's sort is stable).
+  std::size_t best = kNoLimit;
+  std::size_t best_index = kNoLimit;
+  // Passes with a cap on every flood, doubled until the best weight is within it: a loop
+  // stopped by the cap weighs more than the cap, so more than that best, and loses.
+  std::vector<std::size_t> pending(n);
+  std::iota(pending.begin(), pending.end(), std::size_t{0});
+  std::size_t shortest = kNoLimit;
+  for (const Strip& s : loops.strips) shortest = std::min(shortest, s.size());
+  std::size_t cap = hint != 0 && hint != kNoLimit ? hint : 4 * std::max<std::size_t>(1, shortest);
+  std::vector<std::size_t> next;
+  while (!pending.empty()) {
+    next.clear();
+    for (std::size_t l : pending) {
+      std::array<std::size_t, 2> limit{cap, cap};
+      if (best != kNoLimit) {
+        for (std::size_t d = 0; d < 2; ++d) {
+          // wins with weight <= limit (best is at least the strip's node count, never 0)
+          const std::size_t wins = 2 * l + d < best_index ? best : best - 1;
+          limit[d] = std::min(limit[d], wins);
+        }
+      }
+      bool pruned = false;
+      std::array<TraceCandidate, 2> pair =
+          weigh_within(front, loops.strips[l], components, nodes, faces, limit, &pruned);
+      for (std::size_t d = 0; d < 2; ++d) {
+        TraceCandidate& c = pair[d];
+        c.loop = static_cast<std::int32_t>(l);
+        if (pruned) {
+          c.weight = kNoLimit;
+          c.strictly_on_side = 0;
+        } else if (!c.self_intersecting) {
+          const std::size_t index = 2 * l + d;
+          if (c.weight < best || (c.weight == best && index < best_index)) {
+            best = c.weight;
+            best_index = index;
+          }
+        }
+        out[2 * l + d] = c;
+      }
+      if (pruned) next.push_back(l);
+    }
+    if (best <= cap || cap >= front.num_nodes()) break;  // beyond the node count: no cap
+    // with a best known, its weight bounds every flood that is left
+    cap = best != kNoLimit ? best : 2 * cap;
+    pending.swap(next);
+  }
+  hint = best;
   return out;
 }
 
