@@ -48,7 +48,8 @@ void add_weave_options(CLI::App* sub, WeaveArgs& args) {
   off("second-convex-filter", p.second_convex_filter,
       "switch off the second convex filter (sect. 4.3)");
   sub->add_option("--second-convex-min-weight", p.second_convex_min_weight,
-                  "extended: a side elimination weight below this counts as 0 (0: the seed's rule)")
+                  "extended: a side elimination weight (sharp side edges / loop length) below this "
+                  "counts as 0 (0: the seed's rule)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0))
       ->group(group);

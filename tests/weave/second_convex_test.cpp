@@ -38,16 +38,16 @@ TEST(SecondConvexThreshold, AStrayRimEdgeWeighsNothing) {
   EXPECT_EQ(seed.filters.front(), "second_convex:2->1");
   EXPECT_EQ(seed.order.front().loop, 1);
   const Ranking ours = rank(only(second_convex_threshold_filter(0.75)), all);
-  EXPECT_EQ(ours.filters.front(), "second_convex>=0.75:2->2");
+  EXPECT_EQ(ours.filters.front(), "second_convex:2->2");
 }
 
 TEST(SecondConvexThreshold, ASideAlongARimStillWins) {
   // A box's layer loop: every side edge toward the face is sharp (weight 1).
   const std::vector<TraceCandidate> all{candidate(0, 0, 8), candidate(1, 8, 8), candidate(2, 7, 8)};
   const Ranking r = rank(only(second_convex_threshold_filter(0.75)), all);
-  EXPECT_EQ(r.filters.front(), "second_convex>=0.75:3->1");
+  EXPECT_EQ(r.filters.front(), "second_convex:3->1");
   EXPECT_EQ(r.order.front().loop, 1);
-  EXPECT_EQ(r.decided_by, "second_convex>=0.75");
+  EXPECT_EQ(r.decided_by, "second_convex");
 }
 
 TEST(SecondConvexThreshold, OutOfRangeIsRefused) {

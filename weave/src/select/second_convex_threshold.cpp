@@ -3,15 +3,11 @@
 #include "stcweave/weave/second_convex_threshold.hpp"
 
 #include <algorithm>
-#include <cstdio>
 
 namespace stcweave::weave {
 
 Filter second_convex_threshold_filter(double min_weight) {
   Filter f = second_convex_filter();
-  char name[48];
-  std::snprintf(name, sizeof name, "second_convex>=%.3g", min_weight);
-  f.name = name;
   f.cost = [min_weight](const TraceCandidate& c) {
     const double w =
         static_cast<double>(c.side_sharp) / static_cast<double>(std::max<std::size_t>(1, c.length));

@@ -17,7 +17,8 @@
 namespace stcweave::weave {
 
 /// The second convex filter counting a side elimination weight only when it is at least
-/// `min_weight` (in ]0, 1]); below, the weight is 0. Named "second_convex>=W".
+/// `min_weight` (in ]0, 1]); below, the weight is 0. Traced under the same name,
+/// "second_convex" (the threshold is in the report's options).
 [[nodiscard]] Filter second_convex_threshold_filter(double min_weight);
 
 }  // namespace stcweave::weave
