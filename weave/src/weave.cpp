@@ -29,6 +29,7 @@
 #include <cmath>
 
 #include "stcweave/stc/errors.hpp"
+#include "stcweave/weave/front_pillow.hpp"
 #include "stcweave/weave/kernel.hpp"
 #include "stcweave/weave/rules.hpp"
 #include "stcweave/weave/select.hpp"
@@ -191,6 +192,12 @@ WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options,
     // "Shrink the loop", falling back to the next candidates when it is blocked.
     std::string failures;
     if (!shrink_a_candidate(state, ctx, loops, ranking, failures)) {
+      if (state.stats.front_pillows < options.recovery_pillows) {
+        ++state.stats.front_pillows;
+        pillow_front(state, ctx);
+        seam_fixpoint(state, ctx);
+        continue;
+      }
       throw WeaveError("weave: every (loop, side) is blocked with " +
                        std::to_string(state.front.num_faces()) + " front faces left and " +
                        std::to_string(state.woven.hexes.size()) + " hexes built:" + failures);

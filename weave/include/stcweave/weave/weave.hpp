@@ -120,6 +120,9 @@ struct WeaveOptions {
   /// Give up after this many rule applications; 0 chooses 8 * quads^1.5 + 20000 (a k x k x k
   /// box needs about 3 k^3 = 0.02 quads^1.5).
   std::size_t max_rules = 0;
+  /// When every (loop, side) is blocked, put a pillow on the front (one hex per front face,
+  /// new nodes; stcweave/weave/front_pillow.hpp) and go on, at most this many times.
+  std::size_t recovery_pillows = 0;
   /// Called every `progress_every` rules when set.
   std::function<void(const WeaveProgress&)> progress;
   std::size_t progress_every = 20000;
@@ -201,6 +204,8 @@ struct WeaveStats {
   std::size_t nonconvexity_seams = 0;
   /// Failed shrinks that were undone (`WeaveOptions::backtrack`).
   std::size_t rolled_back_shrinks = 0;
+  /// Pillows put on a blocked front (`WeaveOptions::recovery_pillows`).
+  std::size_t front_pillows = 0;
 };
 
 struct WeaveResult {
