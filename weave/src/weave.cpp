@@ -194,7 +194,7 @@ WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options,
     if (!shrink_a_candidate(state, ctx, loops, ranking, failures)) {
       if (state.stats.front_pillows < options.recovery_pillows) {
         ++state.stats.front_pillows;
-        pillow_front(state, ctx);
+        pillow_blocked_node(state, ctx);
         seam_fixpoint(state, ctx);
         continue;
       }

@@ -14,12 +14,10 @@
 
 namespace stcweave::weave {
 
-std::size_t pillow_front(WeaveState& state, WeaveContext& ctx) {
+std::size_t pillow_faces(WeaveState& state, WeaveContext& ctx,
+                         const std::vector<FaceIndex>& faces) {
   Front& front = state.front;
   WovenComplex& woven = state.woven;
-  std::vector<FaceIndex> faces;
-  for (std::size_t f = 0; f < front.face_capacity(); ++f)
-    if (front.is_alive(static_cast<FaceIndex>(f))) faces.push_back(static_cast<FaceIndex>(f));
   if (faces.empty()) return 0;
   std::vector<NodeId> copy(front.num_nodes(), NodeId::invalid());
   const auto copy_of = [&](NodeId n) {
@@ -33,7 +31,11 @@ std::size_t pillow_front(WeaveState& state, WeaveContext& ctx) {
   };
   std::vector<Added> added;
   std::vector<FaceOwner> whiskers;
-  std::map<std::array<NodeId, 4>, FaceOwner> open_sides;  // side faces not yet glued
+  struct Side {
+    FaceOwner owner;
+    std::size_t added;  // index in `added`
+  };
+  std::map<std::array<NodeId, 4>, Side> open_sides;  // side faces not yet glued
   for (FaceIndex f : faces) {
     const stc::Quad q = front.face(f).nodes;
     const stc::Hex hex{q[0],          q[3],          q[2],          q[1],
@@ -64,9 +66,9 @@ std::size_t pillow_front(WeaveState& state, WeaveContext& ctx) {
       }
       const auto it = open_sides.find(key);
       if (it == open_sides.end()) {
-        open_sides.emplace(key, mine);
+        open_sides.emplace(key, Side{mine, added.size()});
       } else {
-        state.link(mine, it->second);
+        state.link(mine, it->second.owner);
         open_sides.erase(it);
       }
     }
@@ -76,8 +78,6 @@ std::size_t pillow_front(WeaveState& state, WeaveContext& ctx) {
     whiskers.push_back(front.face(f).owner);
     for (NodeId n : hex) woven.hexes_at[n.index()].push_back(id);
   }
-  if (!open_sides.empty())
-    throw InternalError("pillow: a side face has no neighbour (the front is not closed)");
   for (FaceIndex f : faces) {
     state.push_nodes_of(f);
     front.remove_face(f);
@@ -91,9 +91,36 @@ std::size_t pillow_front(WeaveState& state, WeaveContext& ctx) {
         a.carried.depth[lf], a.carried.side_angle[lf]);
     state.push_nodes_of(g);
   }
+  // The side faces along the region's rim join the front (none for a closed front).
+  for (const auto& [key, side] : open_sides) {
+    const Added& a = added[side.added];
+    const auto lf = static_cast<std::size_t>(side.owner.local_face);
+    const FaceIndex g = front.add_face(
+        stc::reversed(stc::hex_face(woven.hexes[a.id.index()], side.owner.local_face)), side.owner,
+        a.carried.depth[lf], a.carried.side_angle[lf]);
+    state.push_nodes_of(g);
+  }
   ctx.after_rule(state, "pillow", woven.hexes[added.front().id.index()][4], whiskers,
                  added.back().id);
   return added.size();
+}
+
+std::size_t pillow_front(WeaveState& state, WeaveContext& ctx) {
+  std::vector<FaceIndex> faces;
+  for (std::size_t f = 0; f < state.front.face_capacity(); ++f)
+    if (state.front.is_alive(static_cast<FaceIndex>(f))) faces.push_back(static_cast<FaceIndex>(f));
+  return pillow_faces(state, ctx, faces);
+}
+
+std::size_t pillow_blocked_node(WeaveState& state, WeaveContext& ctx) {
+  for (std::size_t n = 0; n < state.front.num_nodes(); ++n) {
+    const NodeId v(n);
+    if (state.front.find(v) != v || state.front.valence(v) != 2) continue;
+    std::vector<FaceIndex> at = state.front.faces_at(v);
+    std::sort(at.begin(), at.end());
+    return pillow_faces(state, ctx, {at.front()});
+  }
+  return pillow_front(state, ctx);
 }
 
 }  // namespace stcweave::weave

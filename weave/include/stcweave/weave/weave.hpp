@@ -120,8 +120,9 @@ struct WeaveOptions {
   /// Give up after this many rule applications; 0 chooses 8 * quads^1.5 + 20000 (a k x k x k
   /// box needs about 3 k^3 = 0.02 quads^1.5).
   std::size_t max_rules = 0;
-  /// When every (loop, side) is blocked, put a pillow on the front (one hex per front face,
-  /// new nodes; stcweave/weave/front_pillow.hpp) and go on, at most this many times.
+  /// When every (loop, side) is blocked, pillow one face at a blocked valence-2 node (the
+  /// whole front when there is none; stcweave/weave/front_pillow.hpp) and go on, at most
+  /// this many times. 0: off (the block is an error).
   std::size_t recovery_pillows = 0;
   /// Called every `progress_every` rules when set.
   std::function<void(const WeaveProgress&)> progress;
