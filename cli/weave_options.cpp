@@ -47,6 +47,12 @@ void add_weave_options(CLI::App* sub, WeaveArgs& args) {
       "switch off the first convex filter (sect. 4.2)");
   off("second-convex-filter", p.second_convex_filter,
       "switch off the second convex filter (sect. 4.3)");
+  sub->add_option("--second-convex-min-weight", p.second_convex_min_weight,
+                  "extended: a side elimination weight (sharp side edges / loop length) below this "
+                  "counts as 0 (0: the seed's rule)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0))
+      ->group(group);
   off("flat-cross-precondition", p.flat_cross_precondition,
       "switch off the geometric precondition of the cross (no cross on a too flat corner)");
   sub->add_option("--max-rules", args.max_rules,
@@ -78,6 +84,7 @@ nlohmann::json weave_options_json(const weave::WeaveOptions& options) {
     j["depth_filter"] = p.depth_filter;
     j["first_convex_filter"] = p.first_convex_filter;
     j["second_convex_filter"] = p.second_convex_filter;
+    j["second_convex_min_weight"] = p.second_convex_min_weight;
     j["flat_cross_precondition"] = p.flat_cross_precondition;
   }
   return j;

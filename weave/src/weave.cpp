@@ -31,6 +31,7 @@
 
 #include "select/bounded.hpp"
 #include "stcweave/stc/errors.hpp"
+#include "stcweave/weave/front_pillow.hpp"
 #include "stcweave/weave/kernel.hpp"
 #include "stcweave/weave/rules.hpp"
 #include "stcweave/weave/select.hpp"
@@ -232,6 +233,12 @@ WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options,
     std::string failures;
     if (!shrink_a_candidate(state, ctx, loops, std::move(ranking), failures,
                             bounded ? std::function<Ranking()>(exact) : nullptr)) {
+      if (state.stats.front_pillows < options.recovery_pillows) {
+        ++state.stats.front_pillows;
+        pillow_blocked_node(state, ctx);
+        seam_fixpoint(state, ctx);
+        continue;
+      }
       throw WeaveError("weave: every (loop, side) is blocked with " +
                        std::to_string(state.front.num_faces()) + " front faces left and " +
                        std::to_string(state.woven.hexes.size()) + " hexes built:" + failures);

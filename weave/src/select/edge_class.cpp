@@ -40,6 +40,8 @@ void check_parameters(const ExtendedParameters& p) {
                        ") <= little_sharp_nonconvex (" + std::to_string(p.little_sharp_nonconvex) +
                        ") < 360 degrees");
   }
+  if (!(p.second_convex_min_weight >= 0.0 && p.second_convex_min_weight <= 1.0))
+    throw InvalidInput("second_convex_min_weight must be in [0, 1]");
 }
 
 std::string to_string(EdgeClass c) {

@@ -73,6 +73,10 @@ struct ExtendedParameters {
   /// Second convex rule (sect. 4.3): keep the highest side elimination weight (sharp
   /// convex edges along that side of the strip / loop length).
   bool second_convex_filter = true;
+  /// Second convex rule: a side elimination weight below this counts as 0 (0: the seed's
+  /// rule; see stcweave/weave/second_convex_threshold.hpp). Default 0.75: a side counts
+  /// when three quarters of its side edges are sharp (docs/extended-rules.md has figures).
+  double second_convex_min_weight = 0.75;
   /// Geometric precondition of the cross (sect. 2.2, RWW): refuse a cross at a corner
   /// where more than one of the three edges is flatter than `little_sharp`. Lifted for a
   /// shrink in which every node would otherwise be blocked.
@@ -116,6 +120,10 @@ struct WeaveOptions {
   /// Give up after this many rule applications; 0 chooses 8 * quads^1.5 + 20000 (a k x k x k
   /// box needs about 3 k^3 = 0.02 quads^1.5).
   std::size_t max_rules = 0;
+  /// When every (loop, side) is blocked, pillow one face at a blocked valence-2 node (the
+  /// whole front when there is none; stcweave/weave/front_pillow.hpp) and go on, at most
+  /// this many times. 0: off (the block is an error).
+  std::size_t recovery_pillows = 0;
   /// Called every `progress_every` rules when set.
   std::function<void(const WeaveProgress&)> progress;
   std::size_t progress_every = 20000;
@@ -197,6 +205,8 @@ struct WeaveStats {
   std::size_t nonconvexity_seams = 0;
   /// Failed shrinks that were undone (`WeaveOptions::backtrack`).
   std::size_t rolled_back_shrinks = 0;
+  /// Pillows put on a blocked front (`WeaveOptions::recovery_pillows`).
+  std::size_t front_pillows = 0;
 };
 
 struct WeaveResult {
