@@ -74,9 +74,11 @@ struct ExtendedParameters {
   /// convex edges along that side of the strip / loop length).
   bool second_convex_filter = true;
   /// Second convex rule: a side elimination weight below this counts as 0 (0: the seed's
-  /// rule; see stcweave/weave/second_convex_threshold.hpp). Default 0.75: a side counts
-  /// when three quarters of its side edges are sharp (docs/extended-rules.md has figures).
-  double second_convex_min_weight = 0.75;
+  /// rule; see stcweave/weave/second_convex_threshold.hpp). Default 0, the seed's rule: 0.75 (a
+  /// side counts when three quarters of its side edges are sharp) removes the blow-up on
+  /// triangle-split cylinders but breaks the structured answer of an L-block made of three
+  /// transfinite blocks (docs/extended-rules.md has the figures).
+  double second_convex_min_weight = 0.0;
   /// Geometric precondition of the cross (sect. 2.2, RWW): refuse a cross at a corner
   /// where more than one of the three edges is flatter than `little_sharp`. Lifted for a
   /// shrink in which every node would otherwise be blocked.
