@@ -238,10 +238,11 @@ int run_mesh(const MeshArgs& a) {
                                         : primal::format_from_name(a.output_format);
   // Cell data and the browser page: the digest keeps what they show of the trace (the
   // selection of each shrink, the node of each rule), not the whole trace.
-  if (!a.html.empty() && !viewer::has_three_js())
+  if (!a.html.empty() && !viewer::has_three_js()) {
     throw Unsupported(
         "--html: this stcweave was built without three.js, so it cannot make the "
         "page; install Debian's libjs-three (./dev.sh installs it) and rebuild");
+  }
   const bool format_has_data =
       out_format == primal::Format::Vtk || out_format == primal::Format::Vtu ||
       out_format == primal::Format::Msh || out_format == primal::Format::Msh2;

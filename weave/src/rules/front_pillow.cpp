@@ -94,7 +94,7 @@ std::size_t pillow_faces(WeaveState& state, WeaveContext& ctx,
   // The side faces along the region's rim join the front (none for a closed front).
   for (const auto& [key, side] : open_sides) {
     const Added& a = added[side.added];
-    const auto lf = static_cast<std::size_t>(side.owner.local_face);
+    const auto lf = static_cast<std::size_t>(static_cast<unsigned char>(side.owner.local_face));
     const FaceIndex g = front.add_face(
         stc::reversed(stc::hex_face(woven.hexes[a.id.index()], side.owner.local_face)), side.owner,
         a.carried.depth[lf], a.carried.side_angle[lf]);
