@@ -31,21 +31,10 @@ void write(const fs::path& p, const std::string& text) {
   out << text;
 }
 
-class BenchCli : public ::testing::Test {
+class BenchCli : public stcweave::test::CliTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("stcweave_bench_cli_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  static std::string data(const std::string& name) {
-    return std::string(STCWEAVE_SOURCE_DIR) + "/data/" + name;
-  }
+  BenchCli() : CliTest("stcweave_bench_cli_") {}
   nlohmann::json results() const { return nlohmann::json::parse(slurp(dir_ / "out/results.json")); }
-  fs::path dir_;
 };
 
 TEST_F(BenchCli, EveryInputIsARowFailuresIncluded) {

@@ -19,21 +19,10 @@ using stcweave::test::run_cli;
 using stcweave::test::slurp;
 using ::testing::HasSubstr;
 
-class CadCli : public ::testing::Test {
+class CadCli : public stcweave::test::CliTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("stcweave_cad_cli_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  static std::string data(const std::string& name) {
-    return std::string(STCWEAVE_SOURCE_DIR) + "/data/" + name;
-  }
+  CadCli() : CliTest("stcweave_cad_cli_") {}
   [[nodiscard]] std::string at(const std::string& name) const { return (dir_ / name).string(); }
-  fs::path dir_;
 };
 
 #define SKIP_WITHOUT_GMSH()                 \

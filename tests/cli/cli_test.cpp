@@ -23,20 +23,9 @@ CliRun run(const std::string& args) {
   return stcweave::test::run_cli(args);
 }
 
-class Cli : public ::testing::Test {
+class Cli : public stcweave::test::CliTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("stcweave_cli_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string data(const std::string& name) const {
-    return std::string(STCWEAVE_SOURCE_DIR) + "/data/" + name;
-  }
-  fs::path dir_;
+  Cli() : CliTest("stcweave_cli_") {}
 };
 
 TEST_F(Cli, HelpExitsZeroAndNamesTheSubcommands) {

@@ -15,17 +15,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class GenusCli : public ::testing::Test {
+class GenusCli : public stcweave::test::CliTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("stcweave_genus_cli_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
+  GenusCli() : CliTest("stcweave_genus_cli_") {}
 };
 
 TEST_F(GenusCli, TriangularTorusIsRefusedWithExitCodeTwoNamingTheCycle) {

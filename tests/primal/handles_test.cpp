@@ -11,14 +11,7 @@
 namespace stcweave::primal {
 namespace {
 
-MeshFile file_of(const SurfaceMesh& s, const std::string& name) {
-  MeshFile f;
-  f.path = name;
-  f.format = "memory";
-  f.points = s.points;
-  f.quads = s.surface.quads;
-  return f;
-}
+using test::file_of;
 
 /// The cross-section index j of torus node v (torus_surface numbers nodes j * around + i).
 std::set<int> sections(const HandleCycle& c, int around) {

@@ -37,14 +37,7 @@ fs::path temp_dir() {
   return d;
 }
 
-MeshFile file_of(const SurfaceMesh& s, const std::string& name) {
-  MeshFile f;
-  f.path = name;
-  f.format = "memory";
-  f.points = s.points;
-  f.quads = s.surface.quads;
-  return f;
-}
+using test::file_of;
 
 const DataArray& cell(const MeshData& d, const std::string& name) {
   const DataArray* a = d.cell(name);

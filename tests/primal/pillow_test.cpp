@@ -11,14 +11,7 @@
 namespace stcweave::primal {
 namespace {
 
-MeshFile file_of(const SurfaceMesh& s, const std::string& name) {
-  MeshFile f;
-  f.path = name;
-  f.format = "memory";
-  f.points = s.points;
-  f.quads = s.surface.quads;
-  return f;
-}
+using test::file_of;
 
 /// A box's hex mesh with its boundary nodes renumbered first (as the pipeline numbers them),
 /// and that boundary.

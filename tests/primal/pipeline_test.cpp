@@ -8,14 +8,7 @@
 namespace stcweave::primal {
 namespace {
 
-MeshFile file_of(const SurfaceMesh& s, const std::string& name) {
-  MeshFile f;
-  f.path = name;
-  f.format = "memory";
-  f.points = s.points;
-  f.quads = s.surface.quads;
-  return f;
-}
+using test::file_of;
 
 TEST(Pipeline, LBlockGivesItsTenStructuredHexes) {
   const MeshResult r = mesh_file(file_of(test::voxel_surface(test::lblock_cells()), "lblock"));

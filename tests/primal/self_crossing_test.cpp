@@ -16,14 +16,7 @@
 namespace stcweave::primal {
 namespace {
 
-MeshFile file_of(const SurfaceMesh& s, const std::string& name) {
-  MeshFile f;
-  f.path = name;
-  f.format = "memory";
-  f.points = s.points;
-  f.quads = s.surface.quads;
-  return f;
-}
+using test::file_of;
 
 // The generated catalogue (tests/support/quadrangulations.hpp): seeds 0..299, 8..21 quads
 // (8 + seed % 14 doublet splits of the cube's quads), 40 random edge rotations, then repair.

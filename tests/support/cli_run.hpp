@@ -3,6 +3,7 @@
 /// Running the stcweave program from a test: its exit code and its output. Needs the
 /// STCWEAVE_CLI definition (the program's path) of the test executable.
 
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <array>
@@ -11,6 +12,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 
 namespace stcweave::test {
 
@@ -39,5 +41,27 @@ inline std::string slurp(const std::filesystem::path& p) {
   ss << in.rdbuf();
   return ss.str();
 }
+
+/// A fixture giving each test case a fresh, empty folder `dir_` (the system's temporary
+/// folder / PREFIX followed by the test's name), removed after the test.
+class CliTest : public ::testing::Test {
+ protected:
+  explicit CliTest(std::string prefix) : prefix_(std::move(prefix)) {}
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           (prefix_ + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  /// A file of the repository's data/ folder.
+  static std::string data(const std::string& name) {
+    return std::string(STCWEAVE_SOURCE_DIR) + "/data/" + name;
+  }
+  std::filesystem::path dir_;
+
+ private:
+  std::string prefix_;
+};
 
 }  // namespace stcweave::test

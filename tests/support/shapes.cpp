@@ -9,6 +9,15 @@
 
 namespace stcweave::test {
 
+primal::MeshFile file_of(const primal::SurfaceMesh& surface, const std::string& name) {
+  primal::MeshFile f;
+  f.path = name;
+  f.format = "memory";
+  f.points = surface.points;
+  f.quads = surface.surface.quads;
+  return f;
+}
+
 primal::HexMesh box_hexes(int a, int b, int c, double sx, double sy, double sz) {
   primal::HexMesh m = primal::box_hexes(a, b, c);  // unit cubes, node (i, j, k) at (i, j, k)
   m.points.col(0) *= sx;

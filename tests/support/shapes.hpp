@@ -4,11 +4,16 @@
 /// Fig. 5 bar, the rhombic dodecahedron. Surfaces are oriented outward.
 
 #include <array>
+#include <string>
 #include <vector>
 
 #include "stcweave/primal/mesh.hpp"
 
 namespace stcweave::test {
+
+/// `surface` as the in-memory file the pipeline reads (`primal::mesh_file`): path `name`,
+/// format "memory", the surface's points and quads.
+primal::MeshFile file_of(const primal::SurfaceMesh& surface, const std::string& name);
 
 /// The a x b x c structured hex mesh of the box [0,a*sx] x [0,b*sy] x [0,c*sz], hexes
 /// positively oriented (VTK order). Node (i,j,k) has id i + (a+1)(j + (b+1)k).

@@ -62,15 +62,6 @@ nlohmann::json embedded(const std::string& html) {
   return nlohmann::json::parse(html.substr(a + open.size(), b - a - open.size()));
 }
 
-primal::MeshFile file_of(const primal::SurfaceMesh& s) {
-  primal::MeshFile f;
-  f.path = "lblock";
-  f.format = "memory";
-  f.points = s.points;
-  f.quads = s.surface.quads;
-  return f;
-}
-
 TEST(Base64, KnownVectors) {
   EXPECT_EQ(base64({}), "");
   EXPECT_EQ(base64({'f'}), "Zg==");
@@ -85,7 +76,8 @@ TEST(Page, DataMatchesTheWovenMesh) {
   primal::MeshOptions options;
   primal::TraceDigest digest;
   options.weave.on_trace = [&](const weave::TraceEvent& e) { digest.add(e); };
-  const primal::MeshResult r = primal::mesh_file(file_of(test::box_surface(4, 3, 5)), options);
+  const primal::MeshResult r =
+      primal::mesh_file(test::file_of(test::box_surface(4, 3, 5), "box"), options);
   const stc::HexStc stc = stc::build_hex_stc(r.mesh.complex);
   const primal::WeaveHistory history = primal::weave_history(r.woven, &digest);
   const primal::MeshData data = primal::hex_mesh_data(r.mesh, stc, &history);

@@ -214,14 +214,7 @@ std::vector<std::pair<std::string, primal::SurfaceMesh>> figure5_bars() {
   return bars;
 }
 
-primal::MeshFile file_of(const primal::SurfaceMesh& s, const std::string& name) {
-  primal::MeshFile f;
-  f.path = name;
-  f.format = "memory";
-  f.points = s.points;
-  f.quads = s.surface.quads;
-  return f;
-}
+using test::file_of;
 
 TEST(Extended, SeedFigure5BarsGiveValidComplexes) {
   const stc::QuadSurface topology = test::box_surface(1, 1, 3).surface;
