@@ -458,4 +458,8 @@ void write_surface(const SurfaceMesh& mesh, const std::filesystem::path& path, F
   commit(path, text);
 }
 
+void write_text_file(const std::filesystem::path& path, const std::string& text) {
+  commit(path, text);
+}
+
 }  // namespace stcweave::primal

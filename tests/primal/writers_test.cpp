@@ -11,6 +11,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <random>
 #include <sstream>
@@ -263,6 +264,22 @@ TEST(Writers, UnwritableTargetThrowsIoErrorAndLeavesNothing) {
   fs::remove_all(dir, ec);
   EXPECT_THROW(write_hex_mesh(shuffled_reference_hex(), dir / "a.msh"), IoError);
   EXPECT_FALSE(fs::exists(dir));
+}
+
+TEST(Writers, TextFileIsWrittenWholeOrRefusedWithIoError) {
+  const fs::path dir = fs::temp_directory_path() / "stcweave_writers_test_text";
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+  EXPECT_THROW(write_text_file(dir / "page.html", "<p>"), IoError);
+  EXPECT_FALSE(fs::exists(dir));
+  fs::create_directories(dir);
+  write_text_file(dir / "page.html", "first");
+  write_text_file(dir / "page.html", "second, longer");
+  std::ifstream in(dir / "page.html");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text, "second, longer");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+  fs::remove_all(dir, ec);
 }
 
 }  // namespace

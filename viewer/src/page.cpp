@@ -7,16 +7,14 @@
 #include "stcweave/viewer/page.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <nlohmann/json.hpp>
 #include <numeric>
-#include <random>
 #include <string_view>
 
 #include "assets.hpp"
+#include "stcweave/primal/io.hpp"
 #include "stcweave/primal/quality.hpp"
 #include "stcweave/stc/errors.hpp"
 
@@ -297,30 +295,7 @@ std::string page_html(const primal::HexMesh& mesh, const stc::HexStc& stc,
 void write_page(const std::filesystem::path& path, const primal::HexMesh& mesh,
                 const stc::HexStc& stc, const primal::MeshData& data, const PageOptions& options) {
   const std::string text = page_html(mesh, stc, data, options);
-  const std::filesystem::path folder =
-      path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-  std::random_device random;
-  std::string tmp_name(1, '.');
-  tmp_name += path.filename().string();
-  tmp_name += ".tmp";
-  tmp_name += std::to_string(random());
-  const std::filesystem::path tmp = folder / tmp_name;
-  std::FILE* f = std::fopen(tmp.string().c_str(), "wb");
-  if (f == nullptr)
-    throw IoError("cannot write " + path.string() + ": cannot create a file in " + folder.string() +
-                  " (" + std::strerror(errno) + "); check that the folder exists and is writable");
-  const std::size_t written = std::fwrite(text.data(), 1, text.size(), f);
-  const bool closed = std::fclose(f) == 0;
-  std::error_code ec;
-  if (written != text.size() || !closed) {
-    std::filesystem::remove(tmp, ec);
-    throw IoError("cannot write " + path.string() + ": check the free space and permissions");
-  }
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    throw IoError("cannot write " + path.string() + ": cannot replace it (" + ec.message() + ")");
-  }
+  primal::write_text_file(path, text);
 }
 
 }  // namespace stcweave::viewer

@@ -87,4 +87,9 @@ void write_hex_mesh(const HexMesh& mesh, const std::filesystem::path& path,
 void write_surface(const SurfaceMesh& mesh, const std::filesystem::path& path,
                    Format format = Format::Auto);
 
+/// Writes `text` to `path` the way the mesh writers do: through a temporary file in the same
+/// folder, then a rename, so a failure never leaves a half-written file in place.
+/// \throw IoError when the file cannot be written (the target is then left untouched).
+void write_text_file(const std::filesystem::path& path, const std::string& text);
+
 }  // namespace stcweave::primal
