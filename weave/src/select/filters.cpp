@@ -77,10 +77,11 @@ Selection extended_selection(const ExtendedParameters& p) {
   if (p.nonconvex_filter) s.filters.push_back(nonconvex_filter());
   if (p.depth_filter) s.filters.push_back(depth_filter());
   if (p.first_convex_filter) s.filters.push_back(first_convex_filter());
-  if (p.second_convex_filter)
+  if (p.second_convex_filter) {
     s.filters.push_back(p.second_convex_min_weight > 0.0
                             ? second_convex_threshold_filter(p.second_convex_min_weight)
                             : second_convex_filter());
+  }
   s.last = "topological";
   s.last_reason = "fewest faces collapsed";
   s.list_filters = true;
