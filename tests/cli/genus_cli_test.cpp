@@ -63,10 +63,15 @@ TEST_F(GenusCli, RingIsMeshedIntoEightHexes) {
 TEST_F(GenusCli, HollowCubeIsCutAlongAnAnnulusAndMeshed) {
   // 3 x 3 x 3 voxels minus the centre one: an outer and an inner shell (a cavity).
   std::vector<std::array<int, 3>> cells;
-  for (int k = 0; k < 3; ++k)
-    for (int j = 0; j < 3; ++j)
-      for (int i = 0; i < 3; ++i)
-        if (!(i == 1 && j == 1 && k == 1)) cells.push_back({i, j, k});
+  for (int k = 0; k < 3; ++k) {
+    for (int j = 0; j < 3; ++j) {
+      for (int i = 0; i < 3; ++i) {
+        if (!(i == 1 && j == 1 && k == 1)) {
+          cells.push_back({i, j, k});
+        }
+      }
+    }
+  }
   const fs::path in = dir_ / "hollow.obj";
   stcweave::primal::write_surface(stcweave::test::voxel_surface(cells), in);
   const fs::path out = dir_ / "hollow.vtk";
@@ -86,12 +91,16 @@ TEST_F(GenusCli, HollowCubeIsCutAlongAnAnnulusAndMeshed) {
 TEST_F(GenusCli, ShellInsideACavityIsRefused) {
   // A cube in the cavity of a hollow cube: nesting depth 2.
   std::vector<std::array<int, 3>> cells;
-  for (int k = 0; k < 5; ++k)
-    for (int j = 0; j < 5; ++j)
-      for (int i = 0; i < 5; ++i)
+  for (int k = 0; k < 5; ++k) {
+    for (int j = 0; j < 5; ++j) {
+      for (int i = 0; i < 5; ++i) {
         if (i == 0 || i == 4 || j == 0 || j == 4 || k == 0 || k == 4 ||
-            (i == 2 && j == 2 && k == 2))
+            (i == 2 && j == 2 && k == 2)) {
           cells.push_back({i, j, k});
+        }
+      }
+    }
+  }
   const fs::path in = dir_ / "nested.obj";
   stcweave::primal::write_surface(stcweave::test::voxel_surface(cells), in);
   const auto r =

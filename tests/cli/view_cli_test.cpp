@@ -15,7 +15,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path dir() {
-  const fs::path d = fs::temp_directory_path() / "stcweave_view_cli";
+  fs::path d = fs::temp_directory_path() / "stcweave_view_cli";
   fs::create_directories(d);
   return d;
 }
