@@ -129,7 +129,16 @@ nlohmann::json position_json(const primal::PositionReport& p) {
             {"min_scaled_jacobian_after", p.shape.min_scaled_jacobian_after},
             {"mean_scaled_jacobian_before", p.shape.mean_scaled_jacobian_before},
             {"mean_scaled_jacobian_after", p.shape.mean_scaled_jacobian_after},
-            {"stop", p.shape.stop}}},
+            {"stop", p.shape.stop},
+            {"barrier",
+             {{"ran", p.shape.barrier.ran},
+              {"rounds", p.shape.barrier.rounds},
+              {"iterations", p.shape.barrier.iterations},
+              {"min_corner_before", p.shape.barrier.min_corner_before},
+              {"min_corner_after", p.shape.barrier.min_corner_after},
+              {"min_scaled_jacobian_before", p.shape.barrier.min_scaled_jacobian_before},
+              {"min_scaled_jacobian_after", p.shape.barrier.min_scaled_jacobian_after},
+              {"stop", p.shape.barrier.stop}}}}},
           {"seconds", p.seconds}};
 }
 

@@ -804,6 +804,12 @@ ShapeReport improve_shape(HexMesh& mesh, const std::vector<bool>& fixed,
     return report;
   }
   report.ran = true;
+  report.barrier = raise_worst_corners(mesh, fixed, options);
+  if (report.barrier.ran) {
+    for (std::size_t h = 0; h < hexes.size(); ++h)
+      sj[h] = hex_scaled_jacobian(mesh.points, hexes[h]);
+    summary(report.min_scaled_jacobian_after, report.mean_scaled_jacobian_after);
+  }
   // The hexes around node v: their smallest scaled Jacobian and their sum.
   struct Local {
     double min = std::numeric_limits<double>::infinity();
@@ -857,8 +863,18 @@ ShapeReport improve_shape(HexMesh& mesh, const std::vector<bool>& fixed,
     for (std::size_t h = 0; h < hexes.size(); ++h)
       if (sj[h] < options.shape_target)
         for (const NodeId v : hexes[h]) active[v.index()] = !fixed[v.index()];
+    // Worst first: the nodes of the poorest hexes are moved before their neighbours (ties in
+    // node order, so the sweep is deterministic).
+    std::vector<std::pair<double, std::size_t>> order;
     for (std::size_t v = 0; v < n; ++v) {
-      if (!active[v] || neighbours[v].empty()) continue;
+      if (!active[v]) continue;
+      double worst = std::numeric_limits<double>::infinity();
+      for (std::size_t i = start[v]; i < start[v + 1]; ++i) worst = std::min(worst, sj[around[i]]);
+      order.emplace_back(worst, v);
+    }
+    std::sort(order.begin(), order.end());
+    for (const auto& [worst_around, v] : order) {
+      if (neighbours[v].empty()) continue;
       double length = 0.0;
       Eigen::RowVector3d centre = Eigen::RowVector3d::Zero();
       for (const std::int32_t w : neighbours[v]) {
@@ -1118,7 +1134,7 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
   report.min_scaled_jacobian_untangled = after.min_scaled_jacobian;
   report.mean_scaled_jacobian_untangled = after.mean_scaled_jacobian;
   report.shape = improve_shape(mesh, fixed, options);
-  if (report.shape.moves > 0) after = summarize_quality(mesh, 0);
+  if (report.shape.moves > 0 || report.shape.barrier.ran) after = summarize_quality(mesh, 0);
   report.inverted_after = after.inverted;
   report.min_scaled_jacobian_after = after.min_scaled_jacobian;
   report.mean_scaled_jacobian_after = after.mean_scaled_jacobian;

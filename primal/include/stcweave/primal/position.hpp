@@ -107,7 +107,62 @@ struct PositionOptions {
   /// reduced the shortfall, sum over hexes of max(0, shape_target - scaled Jacobian), by
   /// less than this fraction of it.
   double shape_tolerance = 1e-2;
+  /// Shape phase, barrier pass (see `raise_worst_corners`): at most this many rounds; 0
+  /// switches the pass off and leaves the local moves alone.
+  int barrier_rounds = 8;
+  /// Barrier pass: L-BFGS iterations per round.
+  int barrier_iterations = 100;
+  /// Barrier pass: the level t of a round is the smallest corner scaled Jacobian q_min of the
+  /// worked-on corners times (1 - margin), so the worst corner starts at q_min - t =
+  /// margin q_min above the barrier (0 < margin < 1).
+  double barrier_margin = 0.5;
+  /// Barrier pass: softness tau of the soft minimum exp((q_min - q) / tau) summed over the
+  /// corners (smaller: closer to the true minimum; 0.005 measured best of 0.002-0.05 on
+  /// Gmsh's tet-split boundaries, docs/geometry.md).
+  double barrier_softness = 0.005;
+  /// Barrier pass: weight of the mean term (1 - q)^2 per corner, which keeps the corners
+  /// well above the worst from degrading (0.01: measured, docs/geometry.md).
+  double barrier_mean_weight = 0.01;
+  /// Barrier pass: the nodes moved are those of the hexes whose scaled Jacobian is below
+  /// min(shape_target, mesh minimum + barrier_window): the worst hexes first.
+  double barrier_window = 0.2;
 };
+
+/// What `raise_worst_corners` did.
+struct BarrierReport {
+  bool ran = false;        ///< at least one round was kept (the mesh changed)
+  std::size_t rounds = 0;  ///< rounds run (the last one may have been undone)
+  std::size_t iterations = 0;
+  /// Smallest corner scaled Jacobian of the worked-on corners at the first round's start and
+  /// after the last kept round.
+  double min_corner_before = 0.0;
+  double min_corner_after = 0.0;
+  /// Mesh minimum of Verdict's scaled Jacobian (centre included) before and after.
+  double min_scaled_jacobian_before = 0.0;
+  double min_scaled_jacobian_after = 0.0;
+  /// "target reached", "settled" (a round gained less than a tenth of `shape_tolerance`),
+  /// "settled (a round lowered the worst hex: undone)", "round limit", "off",
+  /// "inverted hexes: skipped", "no free node below the target".
+  std::string stop;
+};
+
+/// Barrier pass of the shape phase: raises the worst corner scaled Jacobians of a valid mesh.
+/// Each round takes the free nodes of the hexes below min(`shape_target`, mesh minimum +
+/// `barrier_window`) and minimises, by L-BFGS over those nodes, the sum over every corner
+/// that depends on them of exp((q_min - q) / `barrier_softness`) + `barrier_mean_weight`
+/// (1 - q)^2, q being the corner's scaled Jacobian (unit edge vectors) and q_min the
+/// smallest at the round's start: a soft minimum, dominated by the worst corners, plus a
+/// small term for the others. The objective is +infinity once a corner reaches the level
+/// t = q_min (1 - `barrier_margin`) (a hard barrier: no corner can fall far or invert). A
+/// round is kept only if the smallest scaled Jacobian (Verdict's, centre included) of the
+/// hexes it touched did not drop and it gained at least a tenth of `shape_tolerance` in that
+/// or in q_min; otherwise it is undone and the pass stops. At most `barrier_rounds` rounds of
+/// `barrier_iterations` iterations. Nodes `fixed` never move; corners with four fixed nodes
+/// are left out (they cannot change). Deterministic (fixed order, one thread). Runs nothing
+/// on a mesh with an inverted hex.
+/// \throw InvalidInput when the mask or a hex disagrees with the points.
+BarrierReport raise_worst_corners(HexMesh& mesh, const std::vector<bool>& fixed,
+                                  const PositionOptions& options);
 
 /// What `improve_shape` did.
 struct ShapeReport {
@@ -118,6 +173,7 @@ struct ShapeReport {
   double min_scaled_jacobian_after = 0.0;
   double mean_scaled_jacobian_before = 0.0;
   double mean_scaled_jacobian_after = 0.0;
+  BarrierReport barrier;  ///< the barrier pass, run before the local moves
   /// "target reached" (no hex below `shape_target`), "settled" (a sweep gained less than
   /// `shape_tolerance` in the minimum and in the shortfall below the target), "sweep limit",
   /// "inverted hexes: skipped", "no free node", "off".
@@ -125,13 +181,14 @@ struct ShapeReport {
 };
 
 /// Shape improvement of an untangled mesh: raises the worst scaled Jacobian (Verdict's, the
-/// 9-point one the quality report uses) by local max-min moves, nodes `fixed` never move.
-/// Each sweep visits, in node order, every free node of a hex whose scaled Jacobian is below
-/// `shape_target`, and moves it only when that raises the smallest scaled Jacobian of the
-/// hexes around it: first to the mean of its edge neighbours (smart Laplacian), then along
-/// the finite-difference gradient of that local minimum with halving steps from a fifth of
-/// its mean edge length. A move is accepted only if the local minimum grows, so no hex gets
-/// worse than the worst one around it was and none can invert: the mesh's minimum never
+/// 9-point one the quality report uses), nodes `fixed` never move. First the barrier pass
+/// (`raise_worst_corners`, a global soft max-min of the corner scaled Jacobians), then local
+/// max-min moves. Each sweep visits, worst first (ties in node order), every free node of a hex
+/// whose scaled Jacobian is below `shape_target`, and moves it only when that raises the smallest
+/// scaled Jacobian of the hexes around it: first to the mean of its edge neighbours (smart
+/// Laplacian), then along the finite-difference gradient of that local minimum with halving steps
+/// from a fifth of its mean edge length. A move is accepted only if the local minimum grows, so no
+/// hex gets worse than the worst one around it was and none can invert: the mesh's minimum never
 /// drops (a barrier on the worst element). Stops when no hex is below the target, when a
 /// sweep raised the minimum by less than `shape_tolerance` and reduced the shortfall
 /// sum max(0, target - SJ) by less than `shape_tolerance` of it, or after `max_shape_sweeps`.
