@@ -130,6 +130,7 @@ nlohmann::json position_json(const primal::PositionReport& p) {
             {"mean_scaled_jacobian_before", p.shape.mean_scaled_jacobian_before},
             {"mean_scaled_jacobian_after", p.shape.mean_scaled_jacobian_after},
             {"stop", p.shape.stop},
+            {"order", p.shape.order},
             {"barrier",
              {{"ran", p.shape.barrier.ran},
               {"rounds", p.shape.barrier.rounds},
@@ -337,7 +338,8 @@ int run_mesh(const MeshArgs& a) {
                       {"bad_fixed_corners", r.pillow.bad_fixed_corners},
                       {"worst_fixed_corner", r.pillow.worst_fixed_corner},
                       {"nodes_added", r.pillow.nodes_added},
-                      {"hexes_added", r.pillow.hexes_added}};
+                      {"hexes_added", r.pillow.hexes_added},
+                      {"compared", r.pillow.compared}};
   report["untangled"] = options.untangle;
   if (options.untangle) report["position"] = position_json(r.position);
   const auto& s = r.woven.stats;

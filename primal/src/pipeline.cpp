@@ -1,6 +1,8 @@
 #include "stcweave/primal/pipeline.hpp"
 
 #include <chrono>
+#include <optional>
+#include <utility>
 
 #include "stcweave/primal/cut.hpp"
 #include "stcweave/primal/edge_angles.hpp"
@@ -98,6 +100,10 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
       options.untangle && options.layer_start && layer_positions(r.mesh, r.woven) > 0;
 
   stage("pillow");
+  // Auto may compare the pillowed complex with the woven one after positioning both.
+  std::optional<HexMesh> woven_mesh;
+  if (options.untangle && options.pillow.mode == PillowMode::Auto && options.pillow.compare)
+    woven_mesh = r.mesh;
   r.pillow = pillow(r.mesh, r.surface.surface, options.pillow);
   if (r.pillow.applied) {
     // A pillowed complex that is not a hex complex with the input as boundary is a bug.
@@ -112,6 +118,22 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
     position.num_fixed = r.woven.num_input_nodes;
     if (layer_start) position.start = StartPosition::Auto;
     r.position = position_nodes(r.mesh, position);
+    if (woven_mesh && pillow_worth_comparing(r.pillow, options.pillow)) {
+      PositionReport unpillowed = position_nodes(*woven_mesh, position);
+      const auto candidate = [](const HexMesh& m, const PositionReport& p) {
+        return PillowCandidate{p.inverted_after, p.min_scaled_jacobian_after,
+                               p.mean_scaled_jacobian_after, m.complex.hexes.size()};
+      };
+      const PillowCandidate with = candidate(r.mesh, r.position);
+      const PillowCandidate without = candidate(*woven_mesh, unpillowed);
+      const bool keep = choose_pillowed(with, without);
+      r.pillow = compared_pillow_report(r.pillow, keep, with, without);
+      if (!keep) {
+        r.mesh = std::move(*woven_mesh);
+        r.position = std::move(unpillowed);
+        r.validation = stc::validate_hex_complex(r.mesh.complex, &r.surface.surface);
+      }
+    }
     r.seconds.position = clock.lap();
   }
 

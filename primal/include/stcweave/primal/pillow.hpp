@@ -55,6 +55,10 @@ struct PillowOptions {
   /// Initial inward offset of a copy, as a fraction of the mean length of its node's
   /// boundary edges (0 < offset < 1; a quarter was measured to work).
   double offset = 0.25;
+  /// Auto: when every bad fixed corner is positive (the woven complex may be valid as it is),
+  /// position both the pillowed and the unpillowed complex and keep the better one
+  /// (`choose_pillowed`). Off: pillow whenever a fixed corner is bad.
+  bool compare = true;
 };
 
 /// What `pillow` decided and did.
@@ -73,6 +77,8 @@ struct PillowReport {
   std::size_t hexes_added = 0;  ///< one per boundary quad of a pillowed shell
   /// One line: which mode, whether pillowed, and why (names the worst fixed corner).
   std::string reason;
+  /// Auto with `compare`: both complexes were positioned and compared (`choose_pillowed`).
+  bool compared = false;
 };
 
 /// The fixed corners of `mesh` (hex corners whose four nodes are among the boundary nodes
@@ -90,5 +96,34 @@ struct PillowReport {
 ///        outside the boundary's node range, or `options.offset` is not in ]0, 1[.
 PillowReport pillow(HexMesh& mesh, const stc::QuadSurface& boundary,
                     const PillowOptions& options = {});
+
+/// Auto mode's second question: is the pillow worth comparing? True when `report` pillowed
+/// in `Auto` mode with `compare` on and every bad fixed corner is positive (worst fixed
+/// corner > 0): then the woven complex can be valid without the pillow, and the pillow may
+/// make the worst hex worse (a few hexes whose nodes are all on the boundary, as
+/// `svd2016_Dolphin_1`, get a thin pillow layer instead). A flat or inverted fixed corner
+/// needs the pillow: no comparison.
+[[nodiscard]] bool pillow_worth_comparing(const PillowReport& report, const PillowOptions& options);
+
+/// Quality of one positioned candidate, as `choose_pillowed` compares them.
+struct PillowCandidate {
+  std::size_t inverted = 0;          ///< hexes with scaled Jacobian <= 0
+  double min_scaled_jacobian = 0.0;  ///< Verdict's, centre included
+  double mean_scaled_jacobian = 0.0;
+  std::size_t hexes = 0;
+};
+
+/// Whether the pillowed candidate is kept: fewer inverted hexes wins; at equal counts the
+/// larger minimum scaled Jacobian wins; at equal minima (within 1e-9) the pillowed one is
+/// kept (it has no corner fixed by the boundary). Pure function of the figures.
+[[nodiscard]] bool choose_pillowed(const PillowCandidate& pillowed,
+                                   const PillowCandidate& unpillowed);
+
+/// The report of a compared Auto decision: `pillowed` with `compared` set and its reason
+/// extended by both candidates' figures; when `keep_pillow` is false, `applied`,
+/// `shells_pillowed`, `nodes_added` and `hexes_added` are reset (the woven complex is kept).
+[[nodiscard]] PillowReport compared_pillow_report(PillowReport pillowed, bool keep_pillow,
+                                                  const PillowCandidate& with,
+                                                  const PillowCandidate& without);
 
 }  // namespace stcweave::primal

@@ -173,7 +173,10 @@ struct ShapeReport {
   double min_scaled_jacobian_after = 0.0;
   double mean_scaled_jacobian_before = 0.0;
   double mean_scaled_jacobian_after = 0.0;
-  BarrierReport barrier;  ///< the barrier pass, run before the local moves
+  BarrierReport barrier;  ///< the barrier pass of the order kept
+  /// Which order was kept: "barrier first" (barrier pass, local sweeps) or "local first"
+  /// (local sweeps, barrier pass, local sweeps); empty when the barrier pass is off.
+  std::string order;
   /// "target reached" (no hex below `shape_target`), "settled" (a sweep gained less than
   /// `shape_tolerance` in the minimum and in the shortfall below the target), "sweep limit",
   /// "inverted hexes: skipped", "no free node", "off".
@@ -181,19 +184,22 @@ struct ShapeReport {
 };
 
 /// Shape improvement of an untangled mesh: raises the worst scaled Jacobian (Verdict's, the
-/// 9-point one the quality report uses), nodes `fixed` never move. First the barrier pass
-/// (`raise_worst_corners`, a global soft max-min of the corner scaled Jacobians), then local
-/// max-min moves. Each sweep visits, worst first (ties in node order), every free node of a hex
-/// whose scaled Jacobian is below `shape_target`, and moves it only when that raises the smallest
-/// scaled Jacobian of the hexes around it: first to the mean of its edge neighbours (smart
-/// Laplacian), then along the finite-difference gradient of that local minimum with halving steps
-/// from a fifth of its mean edge length. A move is accepted only if the local minimum grows, so no
-/// hex gets worse than the worst one around it was and none can invert: the mesh's minimum never
-/// drops (a barrier on the worst element). Stops when no hex is below the target, when a
-/// sweep raised the minimum by less than `shape_tolerance` and reduced the shortfall
-/// sum max(0, target - SJ) by less than `shape_tolerance` of it, or after `max_shape_sweeps`.
-/// Deterministic (fixed order, no threads). Runs nothing when a hex is inverted.
-/// \pre `fixed.size() == mesh.points.rows()`.
+/// 9-point one the quality report uses), nodes `fixed` never move. Two orders of the barrier
+/// pass (`raise_worst_corners`, a soft max-min of the corner scaled Jacobians over the worst
+/// hexes' nodes) and the local max-min moves below are run from the same start, "barrier
+/// first" (barrier, local) and "local first" (local, barrier, local); the result with the
+/// larger minimum (then mean) is kept, "barrier first" on a tie (`ShapeReport::order`).
+/// With `barrier_rounds` = 0 only the local moves run. The local moves: Each sweep visits, worst
+/// first (ties in node order), every free node of a hex whose scaled Jacobian is below
+/// `shape_target`, and moves it only when that raises the smallest scaled Jacobian of the hexes
+/// around it: first to the mean of its edge neighbours (smart Laplacian), then along the
+/// finite-difference gradient of that local minimum with halving steps from a fifth of its mean
+/// edge length. A move is accepted only if the local minimum grows, so no hex gets worse than the
+/// worst one around it was and none can invert: the mesh's minimum never drops (a barrier on the
+/// worst element). Stops when no hex is below the target, when a sweep raised the minimum by less
+/// than `shape_tolerance` and reduced the shortfall sum max(0, target - SJ) by less than
+/// `shape_tolerance` of it, or after `max_shape_sweeps`. Deterministic (fixed order, no threads).
+/// Runs nothing when a hex is inverted. \pre `fixed.size() == mesh.points.rows()`.
 ShapeReport improve_shape(HexMesh& mesh, const std::vector<bool>& fixed,
                           const PositionOptions& options);
 
