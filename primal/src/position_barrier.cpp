@@ -178,18 +178,22 @@ BarrierReport raise_worst_corners(HexMesh& mesh, const std::vector<bool>& fixed,
     throw InvalidInput("raise_worst_corners: the fixed mask has " + std::to_string(fixed.size()) +
                        " entries for " + std::to_string(n) + " nodes");
   if (!(options.barrier_margin > 0.0 && options.barrier_margin < 1.0) ||
-      !(options.barrier_softness > 0.0) || !(options.barrier_mean_weight >= 0.0))
+      !(options.barrier_softness > 0.0) || !(options.barrier_mean_weight >= 0.0)) {
     throw InvalidInput("raise_worst_corners: barrier_margin must be in ]0, 1[ (is " +
                        std::to_string(options.barrier_margin) + "), barrier_softness > 0 (is " +
                        std::to_string(options.barrier_softness) +
                        ") and barrier_mean_weight >= 0 (is " +
                        std::to_string(options.barrier_mean_weight) + ")");
+  }
   const std::vector<stc::Hex>& hexes = mesh.complex.hexes;
-  for (const stc::Hex& h : hexes)
-    for (const NodeId v : h)
-      if (!v.is_valid() || v.index() >= n)
+  for (const stc::Hex& h : hexes) {
+    for (const NodeId v : h) {
+      if (!v.is_valid() || v.index() >= n) {
         throw InvalidInput("raise_worst_corners: a hex names node " + v.str() + " out of range (" +
                            std::to_string(n) + " nodes)");
+      }
+    }
+  }
   std::vector<double> sj(hexes.size());
   for (std::size_t h = 0; h < hexes.size(); ++h) sj[h] = hex_scaled_jacobian(mesh.points, hexes[h]);
   const auto global_min = [&] {

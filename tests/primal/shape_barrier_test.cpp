@@ -50,11 +50,13 @@ TEST(ShapeBarrier, RaisesTheWorstCornerAndKeepsTheBoundary) {
       << before.min_scaled_jacobian << " -> " << after.min_scaled_jacobian;
   EXPECT_GT(r.min_corner_after, r.min_corner_before);
   EXPECT_EQ(after.inverted, 0u);
-  for (std::size_t v = 0; v < fixed.size(); ++v)
-    if (fixed[v])
+  for (std::size_t v = 0; v < fixed.size(); ++v) {
+    if (fixed[v]) {
       EXPECT_EQ(mesh.points.row(static_cast<Eigen::Index>(v)),
                 start.row(static_cast<Eigen::Index>(v)))
           << "boundary node n" << v << " moved";
+    }
+  }
 }
 
 TEST(ShapeBarrier, NeverLowersTheWorstHexOverManyStarts) {
