@@ -5,7 +5,8 @@
 
 For each of cube (1 x 1 x 1), L-block (2 x 2 x 1 minus a 1 x 1 x 1 quarter; once as one solid,
 once as three unit boxes glued face to face), cylinder (radius 0.5, height 1), sphere
-(radius 0.5), plate with a hole (4 x 2 x 0.5, hole of radius 0.5; one solid, and four blocks
+(radius 0.5; cylinder and sphere also as blocks: an O-grid of 5, a cubed sphere of 7),
+plate with a hole (4 x 2 x 0.5, hole of radius 0.5; one solid, and four blocks
 cut along the diagonals) and torus (radius 1, tube 0.4; one solid, and 20 blocks of an O-grid
 section), written as STEP by data/make_cad_examples.py:
 - ours:  stcweave mesh SOLID.step -o ours.vtk --size H  (quads of edge ~H);
@@ -30,8 +31,8 @@ import sys
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-SHAPES = ["cube", "lblock", "lblock_blocks", "cylinder", "sphere", "plate_hole",
-          "plate_hole_blocks", "torus", "torus_blocks"]
+SHAPES = ["cube", "lblock", "lblock_blocks", "cylinder", "cylinder_blocks", "sphere",
+          "sphere_blocks", "plate_hole", "plate_hole_blocks", "torus", "torus_blocks"]
 
 
 def run(cmd, timeout):

@@ -4,10 +4,12 @@
     data/make_cad_examples.py              writes data/plate_slot.step, data/lblock_blocks.step,
                                            data/plate_hole_blocks.step, data/torus_blocks.step,
                                            data/open_shell.step and data/closed_shell.step
-    data/make_cad_examples.py --shapes DIR writes cube, lblock, lblock_blocks (the same L-block
-                                           as three glued boxes), cylinder, sphere, plate_hole,
-                                           plate_hole_blocks, torus and torus_blocks .step
-                                           files into DIR (for bench/cad_vs_gmsh.py)
+    data/make_cad_examples.py --shapes DIR writes the .step files of SHAPES into DIR (for
+                                           bench/cad_vs_gmsh.py): cube, lblock, cylinder,
+                                           sphere, plate_hole and torus as one solid each, and
+                                           each of the last five but the cube also built of
+                                           blocks glued face to face (NAME_blocks), every
+                                           face of the blocks four-sided
 
 plate_slot.step: a 4 x 2 x 0.5 plate with a slot 0.6 wide cut from one long side, 1.2 deep,
 with a round end; the slot is open on the side, so the solid has genus 0.
@@ -30,8 +32,8 @@ import sys
 import gmsh
 
 
-SHAPES = ["cube", "lblock", "lblock_blocks", "cylinder", "sphere", "plate_hole",
-          "plate_hole_blocks", "torus", "torus_blocks"]
+SHAPES = ["cube", "lblock", "lblock_blocks", "cylinder", "cylinder_blocks", "sphere",
+          "sphere_blocks", "plate_hole", "plate_hole_blocks", "torus", "torus_blocks"]
 
 
 def plate_slot(occ):
@@ -110,6 +112,54 @@ def torus_blocks(occ, major=1.0, minor=0.4):
     occ.fragment(blocks[:1], blocks[1:])
 
 
+def cylinder_blocks(occ, radius=0.5, height=1.0):
+    """Cylinder as an O-grid of 5 blocks: square core of half side radius/2.5 and four ring
+    pieces, extruded; every face four-sided."""
+    half, diagonal = radius / 2.5, radius / math.sqrt(2)
+    directions = [(1, -1), (1, 1), (-1, 1), (-1, -1)]
+    centre = occ.addPoint(0, 0, 0)
+    core = [occ.addPoint(half * u, half * v, 0) for u, v in directions]
+    rim = [occ.addPoint(diagonal * u, diagonal * v, 0) for u, v in directions]
+    side = [occ.addLine(core[k], core[(k + 1) % 4]) for k in range(4)]
+    cut = [occ.addLine(core[k], rim[k]) for k in range(4)]
+    arc = [occ.addCircleArc(rim[k], centre, rim[(k + 1) % 4]) for k in range(4)]
+    section = [(2, occ.addPlaneSurface([occ.addCurveLoop(side)]))]
+    for k in range(4):
+        section.append((2, occ.addPlaneSurface([occ.addCurveLoop([side[k], cut[(k + 1) % 4], -arc[k], -cut[k]])])))
+    blocks = [dt for dt in occ.extrude(section, 0, 0, height) if dt[0] == 3]
+    occ.fragment(blocks[:1], blocks[1:])
+
+def sphere_blocks(occ, radius=0.5):
+    """Cubed sphere: a core cube of half side radius/2.5 and six blocks, each the sphere cut by
+    the pyramid from the centre through a face of the cube; every face four-sided."""
+    h, big = radius / 2.5, 2 * radius
+    apex = occ.addPoint(0, 0, 0)
+    base = [occ.addPoint(big * u, big * v, big) for u, v in [(-1, -1), (1, -1), (1, 1), (-1, 1)]]
+    rim = [occ.addLine(base[k], base[(k + 1) % 4]) for k in range(4)]
+    spoke = [occ.addLine(apex, base[k]) for k in range(4)]
+    faces = [occ.addPlaneSurface([occ.addCurveLoop(rim)])]
+    for k in range(4):
+        faces.append(occ.addPlaneSurface([occ.addCurveLoop([spoke[k], rim[k], -spoke[(k + 1) % 4]])]))
+    pyramid = (3, occ.addVolume([occ.addSurfaceLoop(faces)]))
+    # The six directions: +z, then quarter turns about x and y, and the half turn about x.
+    turns = [None, (1, 0, 0, 0.5), (1, 0, 0, -0.5), (0, 1, 0, 0.5), (0, 1, 0, -0.5), (1, 0, 0, 1)]
+    pieces = []
+    for turn in turns:
+        p = occ.copy([pyramid])
+        # OpenCASCADE's sphere has its poles on z and its seam through +x: turned so that its
+        # poles are on x and its seam through -z, the +z patch holds neither.
+        ball = occ.addSphere(0, 0, 0, radius)
+        occ.rotate([(3, ball)], 0, 0, 0, 0, 1, 0, math.pi / 2)
+        if turn:
+            occ.rotate(p + [(3, ball)], 0, 0, 0, turn[0], turn[1], turn[2], turn[3] * math.pi)
+        out, _ = occ.intersect([(3, ball)], p)
+        pieces += out
+    occ.remove([pyramid], recursive=True)
+    core = occ.addBox(-h, -h, -h, 2 * h, 2 * h, 2 * h)
+    pieces, _ = occ.cut(pieces, [(3, core)], removeTool=False)
+    occ.fragment([(3, core)], pieces)
+
+
 def shapes(occ, name):
     if name == "cube":
         occ.addBox(0, 0, 0, 1, 1, 1)
@@ -126,6 +176,10 @@ def shapes(occ, name):
         occ.addCylinder(0, 0, 0, 0, 0, 1, 0.5)
     elif name == "sphere":
         occ.addSphere(0, 0, 0, 0.5)
+    elif name == "cylinder_blocks":
+        cylinder_blocks(occ)
+    elif name == "sphere_blocks":
+        sphere_blocks(occ)
     elif name == "plate_hole":
         plate_hole(occ)
     elif name == "plate_hole_blocks":
