@@ -62,9 +62,17 @@ def main():
     ap.add_argument("--rules", nargs="+", default=["extended", "reliable"])
     ap.add_argument("--timeout", type=float, default=600)
     ap.add_argument("--shapes", nargs="+", default=SHAPES, choices=SHAPES)
+    ap.add_argument("--from", dest="sources", nargs="+", default=[],
+                    help="render the table from these results.json files instead of running")
     ap.add_argument("--mesh-args", nargs=argparse.REMAINDER, default=[])
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
+    if a.sources:
+        rows = [r for src in a.sources for r in json.load(open(src))]
+        rows.sort(key=lambda r: (-r["size"], SHAPES.index(r["shape"]),
+                                 a.rules.index(r["rules"]) if r["rules"] in a.rules else 99))
+        render(rows, a.out)
+        return
     subprocess.run([sys.executable, os.path.join(HERE, "..", "data", "make_cad_examples.py"),
                     "--shapes", a.out], check=True, stdout=subprocess.DEVNULL,
                    stderr=subprocess.DEVNULL)
@@ -103,16 +111,26 @@ def main():
                 rows.append(row)
                 print(json.dumps(row), file=sys.stderr)
     json.dump(rows, open(os.path.join(a.out, "results.json"), "w"), indent=1)
+    render(rows, a.out)
 
+
+def short(error):
+    """The table's version of a failure: the exit code and the start of the reason (the whole
+    message stays in results.json)."""
+    error = error.replace("stcweave: invalid input: component 0: ", "")
+    return error if len(error) <= 60 else error[:57] + "..."
+
+
+def render(rows, out):
     def cells(m):
         if "error" in m:
-            return [m["error"], "", "", "", ""]
+            return [short(m["error"]), "", "", "", ""]
         return ["yes" if m["valid"] else "NO", str(m["inverted"]), str(m["hexes"]),
                 f"{m['min_sj']:.3f}", f"{m['mean_sj']:.3f}"]
 
     def verdict(ours, gm):
         if "error" in ours:
-            return "no: refused"
+            return "no: " + ("timeout" if "timeout" in ours["error"] else "refused")
         if "error" in gm:
             return "Gmsh failed"
         wins = [ours["valid"], ours["inverted"] == 0, ours["hexes"] < gm["hexes"],
@@ -132,7 +150,7 @@ def main():
             [f"{r['ours_seconds']:.2f}"] + cells(r["gmsh"]) + [f"{r['gmsh_seconds']:.2f}"] +
             [verdict(r["ours"], r["gmsh"])]) + " |")
     table = "\n".join(lines) + "\n"
-    open(os.path.join(a.out, "table.md"), "w").write(table)
+    open(os.path.join(out, "table.md"), "w").write(table)
     print(table)
 
 
