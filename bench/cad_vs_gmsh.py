@@ -118,6 +118,8 @@ def short(error):
     """The table's version of a failure: the exit code and the start of the reason (the whole
     message stays in results.json)."""
     error = error.replace("stcweave: invalid input: component 0: ", "")
+    if "no choice of discs" in error:
+        return error.split(":")[0] + ": no disc cut of the handle is loop-clean"
     return error if len(error) <= 60 else error[:57] + "..."
 
 
