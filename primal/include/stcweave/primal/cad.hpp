@@ -14,7 +14,7 @@
 ///   number is chosen per chain of opposite curves (the longest curve of the chain divided
 ///   by the target size, rounded, at least 1).
 /// - `TriangleSplit`: Gmsh's triangles (`Mesh.Algorithm` `CadOptions::triangle_algorithm`,
-///   Frontal-Delaunay by default) at twice the target size, each split into three quads
+///   Delaunay by default) at twice the target size, each split into three quads
 ///   (`Mesh.SubdivisionAlgorithm` 1 with no recombination; checked in Gmsh 4.8.4: the quads are
 ///   exactly three times the triangles), so the quads' edges are about the target size.
 /// - `Mixed`: the four-cornered faces block-structured, the others split from triangles, at
@@ -71,10 +71,10 @@ struct CadOptions {
   /// Which recipe; `Auto` by default.
   CadRecipe recipe = CadRecipe::Auto;
   /// Gmsh's 2D algorithm (`Mesh.Algorithm`) for the triangles of `TriangleSplit` and of the
-  /// split faces of `Mixed`: 1 MeshAdapt, 5 Delaunay, 6 Frontal-Delaunay (the default; no
-  /// algorithm measured better on every solid, docs/cad.md). Others are refused
-  /// (`InvalidInput`).
-  int triangle_algorithm = 6;
+  /// split faces of `Mixed`: 1 MeshAdapt, 5 Delaunay (the default: it beats Gmsh's all-hex
+  /// mesh on more rows of the CAD table than 6, docs/cad.md), 6 Frontal-Delaunay. Others are
+  /// refused (`InvalidInput`).
+  int triangle_algorithm = 5;
   /// Let Gmsh (and OpenCASCADE's readers) print their messages, on standard error (the
   /// process's stdout is sent there while Gmsh works); false by default: Gmsh is silenced
   /// (`General.Terminal` 0, its messages go to its logger) and what OpenCASCADE prints is
