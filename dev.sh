@@ -74,9 +74,9 @@ case "$cmd" in
     configure
     cmake --build "$BUILD_DIR" -j "$JOBS" --target stcweave
     mkdir -p "$BUILD_DIR/out"
-    echo "dev.sh: meshing the bundled input data/lblock.obj"
-    "$BUILD_DIR/bin/stcweave" mesh data/lblock.obj -o "$BUILD_DIR/out/lblock.vtk" \
-      --report "$BUILD_DIR/out/lblock.report.json" ;;
+    echo "dev.sh: meshing the bundled CAD part data/plate_slot.step (needs libgmsh-dev)"
+    "$BUILD_DIR/bin/stcweave" mesh data/plate_slot.step -o "$BUILD_DIR/out/plate_slot.vtk" \
+      --size 0.25 --report "$BUILD_DIR/out/plate_slot.report.json" ;;
   test)
     build chromium  # headless Chromium for the browser page's tests (ctest label browser)
     cd "$BUILD_DIR"

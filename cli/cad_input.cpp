@@ -16,19 +16,29 @@ void add_cad_options(CLI::App* sub, CadArgs& args, const std::string& input) {
           ->group(group);
   CLI::Option* recipe =
       sub->add_option("--cad-recipe", args.recipe,
-                      "CAD input: auto (transfinite when every CAD face has 4 corners, else "
-                      "triangle-split), transfinite, or triangle-split (Gmsh triangles, each "
-                      "split into 3 quads)")
-          ->check(CLI::IsMember({"auto", "transfinite", "triangle-split"}))
+                      "CAD input: auto (transfinite when every CAD face has 4 corners, mixed "
+                      "when some have and the result is loop-clean, else triangle-split), "
+                      "transfinite, triangle-split (Gmsh triangles, each split into 3 quads), "
+                      "or mixed (4-cornered faces structured, the others split; checked "
+                      "loop-clean, else triangle-split)")
+          ->check(CLI::IsMember({"auto", "transfinite", "triangle-split", "mixed"}))
+          ->capture_default_str()
+          ->group(group);
+  CLI::Option* algorithm =
+      sub->add_option("--cad-triangles", args.triangle_algorithm,
+                      "CAD input: Gmsh's triangle algorithm for the split faces: 1 MeshAdapt, "
+                      "5 Delaunay, 6 Frontal-Delaunay")
+          ->check(CLI::IsMember({1, 5, 6}))
           ->capture_default_str()
           ->group(group);
   sub->add_option("--surface-out", args.surface_out,
                   "write the quad surface that is woven (.obj, .off, .vtk): for a CAD input, "
                   "the surface Gmsh made")
       ->group(group);
-  sub->parse_complete_callback([size, recipe, &input] {
-    if ((size->count() > 0 || recipe->count() > 0) && !primal::is_cad_path(input)) {
-      throw CLI::ValidationError("--size/--cad-recipe",
+  sub->parse_complete_callback([size, recipe, algorithm, &input] {
+    if ((size->count() > 0 || recipe->count() > 0 || algorithm->count() > 0) &&
+        !primal::is_cad_path(input)) {
+      throw CLI::ValidationError("--size/--cad-recipe/--cad-triangles",
                                  "apply to CAD inputs only (.step, .stp, .brep, .iges, .igs), "
                                  "not to " +
                                      input);
@@ -43,6 +53,7 @@ InputSurface read_input(const std::string& input, primal::Format format, const C
     primal::CadOptions options;
     options.size = args.size;
     options.recipe = primal::cad_recipe_from_name(args.recipe);
+    options.triangle_algorithm = args.triangle_algorithm;
     options.verbose = progress;
     primal::CadSurface cad = primal::mesh_cad_surface(input, options);
     in.file = std::move(cad.file);
@@ -76,6 +87,7 @@ nlohmann::json cad_json(const primal::CadRecord& r) {
           {"faces", r.faces},
           {"curves", r.curves},
           {"triangles", r.triangles},
+          {"structured_faces", r.structured_faces},
           {"quads", r.quads},
           {"nodes", r.nodes},
           {"max_cad_distance", r.max_cad_distance},

@@ -1,8 +1,9 @@
 #pragma once
 /// \file
-/// The CAD front end of `stcweave mesh` (issue 15): `--size`, `--cad-recipe` and
-/// `--surface-out`, and the reading of the input, a CAD solid (STEP, BREP, IGES: meshed into
-/// a quad surface by `primal::mesh_cad_surface`) or any mesh file (`primal::read_mesh`).
+/// The CAD front end of `stcweave mesh` (issue 15): `--size`, `--cad-recipe`,
+/// `--cad-triangles` and `--surface-out`, and the reading of the input, a CAD solid (STEP, BREP,
+/// IGES: meshed into a quad surface by `primal::mesh_cad_surface`) or any mesh file
+/// (`primal::read_mesh`).
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -17,12 +18,13 @@ namespace stcweave::cli {
 struct CadArgs {
   double size = 0.0;            ///< --size (0: a tenth of the bounding box diagonal)
   std::string recipe = "auto";  ///< --cad-recipe
-  std::string surface_out;      ///< --surface-out
+  int triangle_algorithm = primal::CadOptions{}.triangle_algorithm;  ///< --cad-triangles
+  std::string surface_out;                                           ///< --surface-out
 };
 
-/// Adds --size, --cad-recipe and --surface-out to `sub`, in an option group "CAD input".
-/// `input` is the subcommand's input path: --size and --cad-recipe on a non-CAD input are
-/// usage errors.
+/// Adds --size, --cad-recipe, --cad-triangles and --surface-out to `sub`, in an option group "CAD
+/// input". `input` is the subcommand's input path: --size, --cad-recipe and --cad-triangles on a
+/// non-CAD input are usage errors.
 void add_cad_options(CLI::App* sub, CadArgs& args, const std::string& input);
 
 /// The input as read, and what the CAD front end did when it was a CAD file.

@@ -114,21 +114,6 @@ bool mentions_out_of_memory(const std::string& text) {
          text.find("failed to map segment") != std::string::npos;
 }
 
-void write_text_atomically(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out)
-      throw IoError("cannot write " + path.string() + ": check the folder exists and is writable");
-    out << text;
-    out.flush();
-    if (!out) throw IoError("writing " + path.string() + " failed (disk full?)");
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) throw IoError("cannot rename " + tmp.string() + " to " + path.string());
-}
-
 /// In a freshly forked child: own process group, address-space limit, stdin and stdout to
 /// /dev/null, stderr to `log`. Only async-signal-safe calls.
 void enter_child(const char* log, std::size_t memory_mb) {
@@ -209,7 +194,7 @@ pid_t spawn_exec(const std::vector<std::string>& args, const fs::path& log, std:
         row.reference_error = e.what();
       }
     }
-    write_text_atomically(out, primal::probe_to_json(row).dump(1) + "\n");
+    primal::write_text_file(out, primal::probe_to_json(row).dump(1) + "\n");
   } catch (const std::exception& e) {
     std::cerr << "stcweave: probe failed: " << e.what() << "\n";
     code = mentions_out_of_memory(e.what()) ? kInternal : kInvalidInput;
@@ -480,9 +465,9 @@ int run_bench(const BenchArgs& a) {
 
   results.wall_seconds = std::chrono::duration<double>(Clock::now() - t_start).count();
   primal::fit_scaling(results);
-  write_text_atomically(out / "results.json", primal::to_json(results).dump(1) + "\n");
-  write_text_atomically(out / "results.csv", primal::format_csv(results.rows));
-  write_text_atomically(out / "results.md", primal::format_markdown(results));
+  primal::write_text_file(out / "results.json", primal::to_json(results).dump(1) + "\n");
+  primal::write_text_file(out / "results.csv", primal::format_csv(results.rows));
+  primal::write_text_file(out / "results.md", primal::format_markdown(results));
 
   if (!a.quiet) {
     std::size_t ok = 0;

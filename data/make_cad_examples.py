@@ -2,24 +2,38 @@
 """Writes the CAD examples of data/ with Gmsh's OpenCASCADE kernel (Debian: python3-gmsh).
 
     data/make_cad_examples.py              writes data/plate_slot.step, data/lblock_blocks.step,
+                                           data/plate_hole_blocks.step, data/torus_blocks.step,
                                            data/open_shell.step and data/closed_shell.step
-    data/make_cad_examples.py --shapes DIR writes cube, lblock, lblock_blocks (the same L-block
-                                           as three glued boxes), cylinder and sphere .step
-                                           files into DIR (for bench/cad_vs_gmsh.py)
+    data/make_cad_examples.py --shapes DIR writes the .step files of SHAPES into DIR (for
+                                           bench/cad_vs_gmsh.py): cube, lblock, cylinder,
+                                           sphere, plate_hole and torus as one solid each, and
+                                           each of the last five but the cube also built of
+                                           blocks glued face to face (NAME_blocks), every
+                                           face of the blocks four-sided
 
 plate_slot.step: a 4 x 2 x 0.5 plate with a slot 0.6 wide cut from one long side, 1.2 deep,
 with a round end; the slot is open on the side, so the solid has genus 0.
 lblock_blocks.step: a 2 x 2 x 1 L-block as three unit boxes glued face to face, each solid
 with its own copy of the faces it shares (as STEP assemblies are), every face four-sided.
+plate_hole_blocks.step: a 4 x 2 x 0.5 plate with a through-hole of radius 0.5 at its centre
+(genus 1), as four blocks cut along the plate's diagonals, so every face has four corners.
+torus_blocks.step: a torus (radius 1, tube radius 0.4) as 20 blocks, the tube's section split
+as an O-grid and swept in four quarter turns, every face four-sided. (The same two as one
+solid each, plate_hole and torus of --shapes, have faces without four corners.)
 open_shell.step: a unit cube's boundary with one face missing: five faces and no volume, the
 input stcweave must refuse ("not a closed solid"); closed_shell.step: all six faces and no
 volume, which stcweave sews into a solid (as IGES files, which rarely hold solids, need).
 The system python is named on purpose: python3-gmsh installs the module there.
 """
+import math
 import os
 import sys
 
 import gmsh
+
+
+SHAPES = ["cube", "lblock", "lblock_blocks", "cylinder", "cylinder_blocks", "sphere",
+          "sphere_blocks", "plate_hole", "plate_hole_blocks", "torus", "torus_blocks"]
 
 
 def plate_slot(occ):
@@ -46,6 +60,106 @@ def closed_shell(occ):
     occ.remove([(3, 1)])
 
 
+def plate_hole(occ):
+    """A 4 x 2 x 0.5 plate with a through-hole of radius 0.5 at its centre (genus 1)."""
+    plate = occ.addBox(0, 0, 0, 4, 2, 0.5)
+    hole = occ.addCylinder(2, 1, -0.5, 0, 0, 1.5, 0.5)
+    occ.cut([(3, plate)], [(3, hole)])
+
+
+def plate_hole_blocks(occ, a=4.0, b=2.0, c=0.5):
+    """The same plate as four blocks cut along its diagonals, every face four-sided."""
+    cx, cy, radius = a / 2, b / 2, min(a, b) / 4
+    centre = occ.addPoint(cx, cy, 0)
+    corners, on_hole = [], []
+    for x, y in [(0, 0), (a, 0), (a, b), (0, b)]:
+        length = math.hypot(x - cx, y - cy)
+        corners.append(occ.addPoint(x, y, 0))
+        on_hole.append(occ.addPoint(cx + radius * (x - cx) / length,
+                                    cy + radius * (y - cy) / length, 0))
+    edge = [occ.addLine(corners[k], corners[(k + 1) % 4]) for k in range(4)]
+    cut = [occ.addLine(on_hole[k], corners[k]) for k in range(4)]
+    arc = [occ.addCircleArc(on_hole[k], centre, on_hole[(k + 1) % 4]) for k in range(4)]
+    pieces = []
+    for k in range(4):
+        loop = occ.addCurveLoop([edge[k], -cut[(k + 1) % 4], -arc[k], cut[k]])
+        face = occ.addPlaneSurface([loop])
+        pieces += [dt for dt in occ.extrude([(2, face)], 0, 0, c) if dt[0] == 3]
+    occ.fragment(pieces[:1], pieces[1:])
+
+
+def torus_blocks(occ, major=1.0, minor=0.4):
+    """A torus as 20 blocks: its section split as an O-grid (square core, four ring
+    pieces), swept a quarter turn and copied around the axis; every face four-sided."""
+    half, diagonal = minor / 2.5, minor / math.sqrt(2)
+    directions = [(1, -1), (1, 1), (-1, 1), (-1, -1)]
+    centre = occ.addPoint(major, 0, 0)
+    core = [occ.addPoint(major + half * u, 0, half * v) for u, v in directions]
+    rim = [occ.addPoint(major + diagonal * u, 0, diagonal * v) for u, v in directions]
+    side = [occ.addLine(core[k], core[(k + 1) % 4]) for k in range(4)]
+    cut = [occ.addLine(core[k], rim[k]) for k in range(4)]
+    arc = [occ.addCircleArc(rim[k], centre, rim[(k + 1) % 4]) for k in range(4)]
+    section = [(2, occ.addPlaneSurface([occ.addCurveLoop(side)]))]
+    for k in range(4):
+        loop = occ.addCurveLoop([side[k], cut[(k + 1) % 4], -arc[k], -cut[k]])
+        section.append((2, occ.addPlaneSurface([loop])))
+    blocks = [dt for dt in occ.revolve(section, 0, 0, 0, 0, 0, 1, math.pi / 2) if dt[0] == 3]
+    first = list(blocks)
+    for turn in range(1, 4):
+        copy = occ.copy(first)
+        occ.rotate(copy, 0, 0, 0, 0, 0, 1, turn * math.pi / 2)
+        blocks += copy
+    occ.fragment(blocks[:1], blocks[1:])
+
+
+def cylinder_blocks(occ, radius=0.5, height=1.0):
+    """Cylinder as an O-grid of 5 blocks: square core of half side radius/2.5 and four ring
+    pieces, extruded; every face four-sided."""
+    half, diagonal = radius / 2.5, radius / math.sqrt(2)
+    directions = [(1, -1), (1, 1), (-1, 1), (-1, -1)]
+    centre = occ.addPoint(0, 0, 0)
+    core = [occ.addPoint(half * u, half * v, 0) for u, v in directions]
+    rim = [occ.addPoint(diagonal * u, diagonal * v, 0) for u, v in directions]
+    side = [occ.addLine(core[k], core[(k + 1) % 4]) for k in range(4)]
+    cut = [occ.addLine(core[k], rim[k]) for k in range(4)]
+    arc = [occ.addCircleArc(rim[k], centre, rim[(k + 1) % 4]) for k in range(4)]
+    section = [(2, occ.addPlaneSurface([occ.addCurveLoop(side)]))]
+    for k in range(4):
+        section.append((2, occ.addPlaneSurface([occ.addCurveLoop([side[k], cut[(k + 1) % 4], -arc[k], -cut[k]])])))
+    blocks = [dt for dt in occ.extrude(section, 0, 0, height) if dt[0] == 3]
+    occ.fragment(blocks[:1], blocks[1:])
+
+def sphere_blocks(occ, radius=0.5):
+    """Cubed sphere: a core cube of half side radius/2.5 and six blocks, each the sphere cut by
+    the pyramid from the centre through a face of the cube; every face four-sided."""
+    h, big = radius / 2.5, 2 * radius
+    apex = occ.addPoint(0, 0, 0)
+    base = [occ.addPoint(big * u, big * v, big) for u, v in [(-1, -1), (1, -1), (1, 1), (-1, 1)]]
+    rim = [occ.addLine(base[k], base[(k + 1) % 4]) for k in range(4)]
+    spoke = [occ.addLine(apex, base[k]) for k in range(4)]
+    faces = [occ.addPlaneSurface([occ.addCurveLoop(rim)])]
+    for k in range(4):
+        faces.append(occ.addPlaneSurface([occ.addCurveLoop([spoke[k], rim[k], -spoke[(k + 1) % 4]])]))
+    pyramid = (3, occ.addVolume([occ.addSurfaceLoop(faces)]))
+    # The six directions: +z, then quarter turns about x and y, and the half turn about x.
+    turns = [None, (1, 0, 0, 0.5), (1, 0, 0, -0.5), (0, 1, 0, 0.5), (0, 1, 0, -0.5), (1, 0, 0, 1)]
+    pieces = []
+    for turn in turns:
+        p = occ.copy([pyramid])
+        # OpenCASCADE's sphere has its poles on z and its seam through +x: turned so that its
+        # poles are on x and its seam through -z, the +z patch holds neither.
+        ball = occ.addSphere(0, 0, 0, radius)
+        occ.rotate([(3, ball)], 0, 0, 0, 0, 1, 0, math.pi / 2)
+        if turn:
+            occ.rotate(p + [(3, ball)], 0, 0, 0, turn[0], turn[1], turn[2], turn[3] * math.pi)
+        out, _ = occ.intersect([(3, ball)], p)
+        pieces += out
+    occ.remove([pyramid], recursive=True)
+    core = occ.addBox(-h, -h, -h, 2 * h, 2 * h, 2 * h)
+    pieces, _ = occ.cut(pieces, [(3, core)], removeTool=False)
+    occ.fragment([(3, core)], pieces)
+
+
 def shapes(occ, name):
     if name == "cube":
         occ.addBox(0, 0, 0, 1, 1, 1)
@@ -62,6 +176,18 @@ def shapes(occ, name):
         occ.addCylinder(0, 0, 0, 0, 0, 1, 0.5)
     elif name == "sphere":
         occ.addSphere(0, 0, 0, 0.5)
+    elif name == "cylinder_blocks":
+        cylinder_blocks(occ)
+    elif name == "sphere_blocks":
+        sphere_blocks(occ)
+    elif name == "plate_hole":
+        plate_hole(occ)
+    elif name == "plate_hole_blocks":
+        plate_hole_blocks(occ)
+    elif name == "torus":
+        occ.addTorus(0, 0, 0, 1, 0.4)
+    elif name == "torus_blocks":
+        torus_blocks(occ)
 
 
 def write(path, build, *args):
@@ -77,7 +203,7 @@ def main():
     gmsh.option.setNumber("General.Terminal", 0)
     if len(sys.argv) == 3 and sys.argv[1] == "--shapes":
         os.makedirs(sys.argv[2], exist_ok=True)
-        for name in ["cube", "lblock", "lblock_blocks", "cylinder", "sphere"]:
+        for name in SHAPES:
             write(os.path.join(sys.argv[2], name + ".step"), shapes, name)
     elif len(sys.argv) == 1:
         here = os.path.dirname(os.path.abspath(__file__))
@@ -85,6 +211,8 @@ def main():
         write(os.path.join(here, "open_shell.step"), open_shell)
         write(os.path.join(here, "closed_shell.step"), closed_shell)
         write(os.path.join(here, "lblock_blocks.step"), shapes, "lblock_blocks")
+        write(os.path.join(here, "plate_hole_blocks.step"), plate_hole_blocks)
+        write(os.path.join(here, "torus_blocks.step"), torus_blocks)
     else:
         print(__doc__, file=sys.stderr)
         sys.exit(1)

@@ -6,9 +6,11 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <set>
 #include <string>
 #include <system_error>
 
+#include "stcweave/primal/diagnose.hpp"
 #include "stcweave/stc/errors.hpp"
 
 #if STCWEAVE_HAVE_GMSH
@@ -49,15 +51,18 @@ std::string_view cad_recipe_name(CadRecipe recipe) {
       return "transfinite";
     case CadRecipe::TriangleSplit:
       return "triangle-split";
+    case CadRecipe::Mixed:
+      return "mixed";
   }
   return "auto";
 }
 
 CadRecipe cad_recipe_from_name(std::string_view name) {
-  for (const CadRecipe r : {CadRecipe::Auto, CadRecipe::Transfinite, CadRecipe::TriangleSplit})
+  for (const CadRecipe r :
+       {CadRecipe::Auto, CadRecipe::Transfinite, CadRecipe::TriangleSplit, CadRecipe::Mixed})
     if (name == cad_recipe_name(r)) return r;
   throw InvalidInput("unknown CAD surface recipe '" + std::string(name) +
-                     "': use auto, transfinite or triangle-split");
+                     "': use auto, transfinite, triangle-split or mixed");
 }
 
 bool is_cad_path(const std::filesystem::path& path) {
@@ -322,66 +327,67 @@ int find_root(std::map<int, int>& parent, int x) {
   return x;
 }
 
-/// Puts transfinite constraints on every face when each has four corners; otherwise
-/// returns false with the reason (and sets nothing).
-bool set_transfinite(const std::vector<int>& faces, double size, std::string& reason) {
-  // A face qualifies when its boundary is four distinct curves, each with two distinct end
-  // points, forming one 4-cycle: four distinct corners, each on exactly two of the curves.
-  std::vector<std::array<int, 4> > face_sides;
-  for (const int f : faces) {
-    const std::vector<int> curves = face_curves(f);
-    std::vector<int> distinct = curves;
-    std::sort(distinct.begin(), distinct.end());
-    distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
-    if (curves.size() != 4 || distinct.size() != 4) {
-      reason = "CAD face " + std::to_string(f) + " is bounded by " + std::to_string(curves.size()) +
-               " curve uses, not 4 curves";
-      return false;
-    }
-    std::map<int, int> corner_uses;
-    std::array<std::vector<int>, 4> ends;
-    for (std::size_t i = 0; i < 4; ++i) {
-      ends[i] = curve_points(curves[i]);
-      if (ends[i].size() != 2 || ends[i][0] == ends[i][1]) {
-        reason = "CAD face " + std::to_string(f) + " has a closed curve (curve " +
-                 std::to_string(curves[i]) + ")";
-        return false;
-      }
-      for (const int p : ends[i]) ++corner_uses[p];
-    }
-    if (corner_uses.size() != 4 || std::any_of(corner_uses.begin(), corner_uses.end(),
-                                               [](const auto& kv) { return kv.second != 2; })) {
-      reason = "CAD face " + std::to_string(f) + " has " + std::to_string(corner_uses.size()) +
-               " corners, not 4";
-      return false;
-    }
-    // Order the four curves around the face: side 2 is the one sharing no corner with side 0.
-    std::array<int, 4> sides{};
-    sides[0] = curves[0];
-    std::vector<int> rest;
-    for (std::size_t i = 1; i < 4; ++i) {
-      const bool shares = std::find(ends[0].begin(), ends[0].end(), ends[i][0]) != ends[0].end() ||
-                          std::find(ends[0].begin(), ends[0].end(), ends[i][1]) != ends[0].end();
-      if (shares) {
-        rest.push_back(curves[i]);
-      } else {
-        sides[2] = curves[i];
-      }
-    }
-    if (rest.size() != 2 || sides[2] == 0) {
-      reason = "CAD face " + std::to_string(f) + ": its four curves do not form a cycle";
-      return false;
-    }
-    sides[1] = rest[0];
-    sides[3] = rest[1];
-    face_sides.push_back(sides);
+/// The four curves of `face` in cyclic order (sides 0 and 2 opposite, 1 and 3 opposite) when
+/// the face has four corners: four distinct curves, each with two distinct end points,
+/// forming one 4-cycle (four distinct corners, each on exactly two of the curves). Otherwise
+/// false, with the reason.
+bool four_sides(int face, std::array<int, 4>& sides, std::string& reason) {
+  const std::vector<int> curves = face_curves(face);
+  std::vector<int> distinct = curves;
+  std::sort(distinct.begin(), distinct.end());
+  distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+  if (curves.size() != 4 || distinct.size() != 4) {
+    reason = "CAD face " + std::to_string(face) + " is bounded by " +
+             std::to_string(curves.size()) + " curve uses, not 4 curves";
+    return false;
   }
-  // Opposite curves of a face must get the same number of segments: chains of opposite
-  // curves (union-find), each gets round(longest / size) segments, at least 1.
+  std::map<int, int> corner_uses;
+  std::array<std::vector<int>, 4> ends;
+  for (std::size_t i = 0; i < 4; ++i) {
+    ends[i] = curve_points(curves[i]);
+    if (ends[i].size() != 2 || ends[i][0] == ends[i][1]) {
+      reason = "CAD face " + std::to_string(face) + " has a closed curve (curve " +
+               std::to_string(curves[i]) + ")";
+      return false;
+    }
+    for (const int p : ends[i]) ++corner_uses[p];
+  }
+  if (corner_uses.size() != 4 || std::any_of(corner_uses.begin(), corner_uses.end(),
+                                             [](const auto& kv) { return kv.second != 2; })) {
+    reason = "CAD face " + std::to_string(face) + " has " + std::to_string(corner_uses.size()) +
+             " corners, not 4";
+    return false;
+  }
+  // Side 2 is the one sharing no corner with side 0.
+  sides = {curves[0], 0, 0, 0};
+  std::vector<int> rest;
+  for (std::size_t i = 1; i < 4; ++i) {
+    const bool shares = std::find(ends[0].begin(), ends[0].end(), ends[i][0]) != ends[0].end() ||
+                        std::find(ends[0].begin(), ends[0].end(), ends[i][1]) != ends[0].end();
+    if (shares) {
+      rest.push_back(curves[i]);
+    } else {
+      sides[2] = curves[i];
+    }
+  }
+  if (rest.size() != 2 || sides[2] == 0) {
+    reason = "CAD face " + std::to_string(face) + ": its four curves do not form a cycle";
+    return false;
+  }
+  sides[1] = rest[0];
+  sides[3] = rest[1];
+  return true;
+}
+
+/// Puts transfinite constraints (and recombination) on the faces of `structured`, whose
+/// sides are given. Opposite curves of a face must get the same number of segments: the
+/// curves are grouped in chains of opposite curves (union-find), and every curve of a chain
+/// gets round(longest / size) segments, at least 1.
+void set_transfinite(const std::map<int, std::array<int, 4> >& structured, double size) {
   std::map<int, int> parent;
-  for (const auto& s : face_sides)
+  for (const auto& [f, s] : structured)
     for (const int c : s) parent.emplace(c, c);
-  for (const auto& s : face_sides) {
+  for (const auto& [f, s] : structured) {
     for (int k = 0; k < 2; ++k) {
       const int a = find_root(parent, s[k]);
       const int b = find_root(parent, s[k + 2]);
@@ -400,18 +406,22 @@ bool set_transfinite(const std::vector<int>& faces, double size, std::string& re
     const int segments = std::max(1, static_cast<int>(std::lround(l / size)));
     gmsh::model::mesh::setTransfiniteCurve(c, segments + 1);
   }
-  for (const int f : faces) {
+  for (const auto& [f, s] : structured) {
     gmsh::model::mesh::setTransfiniteSurface(f);
     gmsh::model::mesh::setRecombine(2, f);
   }
-  reason = "every one of the " + std::to_string(faces.size()) + " CAD faces has 4 corners";
-  return true;
 }
 
 /// Meshes the boundary of the current model's volumes with the recipe of `options`.
 /// `record` has path and format set; the model holds `volumes` (synchronised).
 CadSurface mesh_current_model(const CadOptions& options, CadRecord record) {
   const auto t0 = std::chrono::steady_clock::now();
+  if (options.triangle_algorithm != 1 && options.triangle_algorithm != 5 &&
+      options.triangle_algorithm != 6) {
+    throw InvalidInput("Gmsh triangle algorithm " + std::to_string(options.triangle_algorithm) +
+                       " is not one the CAD front end uses: give 1 (MeshAdapt), 5 (Delaunay) or "
+                       "6 (Frontal-Delaunay)");
+  }
   gmsh::vectorpair volumes;
   gmsh::model::getEntities(volumes, 3);
   gmsh::vectorpair all_faces;
@@ -471,21 +481,34 @@ CadSurface mesh_current_model(const CadOptions& options, CadRecord record) {
   }
 
   set_common_options(options);
-  std::string transfinite_reason;
-  const bool transfinite = options.recipe != CadRecipe::TriangleSplit &&
-                           set_transfinite(faces, record.size, transfinite_reason);
-  if (options.recipe == CadRecipe::Transfinite && !transfinite) {
+  // Which faces have four corners, and the first that has not (the reason for the record).
+  std::map<int, std::array<int, 4> > four_cornered;
+  std::string not_four;
+  for (const int f : faces) {
+    std::array<int, 4> sides{};
+    std::string why;
+    if (four_sides(f, sides, why)) {
+      four_cornered.emplace(f, sides);
+    } else if (not_four.empty()) {
+      not_four = why;
+    }
+  }
+  const bool all_four = four_cornered.size() == faces.size();
+  if (options.recipe == CadRecipe::Transfinite && !all_four) {
     throw Unsupported(record.path +
                       ": the transfinite recipe needs every CAD face to have 4 "
                       "corners, but " +
-                      transfinite_reason + "; use --cad-recipe triangle-split or auto");
+                      not_four + "; use --cad-recipe triangle-split, mixed or auto");
   }
-  // Generates the surface mesh with the options set; returns why it failed ("" when every
-  // element of the boundary faces is a quad), with the quads in `quads`.
+
   CadSurface out;
   std::vector<std::array<std::size_t, 4> > quads;
+  std::set<int> structured;  // faces meshed structured in the current attempt
+  // Generates the surface mesh with the options set; returns why it failed ("" when every
+  // element of the boundary faces is a quad), with the quads in `quads`.
   const auto generate = [&]() -> std::string {
     quads.clear();
+    record.triangles = 0;
     take_log();
     try {
       gmsh::model::mesh::generate(2);
@@ -508,6 +531,7 @@ CadSurface mesh_current_model(const CadOptions& options, CadRecord record) {
           non_quads += element_tags[k].size();
           continue;
         }
+        if (structured.count(f) == 0) record.triangles += element_tags[k].size() / 3;
         // Sort by element tag so the order does not depend on Gmsh's internal storage.
         std::vector<std::size_t> order(element_tags[k].size());
         std::iota(order.begin(), order.end(), std::size_t{0});
@@ -531,37 +555,103 @@ CadSurface mesh_current_model(const CadOptions& options, CadRecord record) {
                         std::to_string(record.size) + "): " + why +
                         "; check the CAD model, or try another --size or --cad-recipe");
   };
+  // Drops the mesh and every constraint, for the next attempt.
+  const auto reset = [&] {
+    gmsh::model::mesh::clear();
+    gmsh::model::mesh::removeConstraints();
+    structured.clear();
+  };
+  // Triangles at twice the size, every element then split (a triangle into three quads, a
+  // quad of a structured face into four), so that the quads' edges are about the size.
+  const auto split_options = [&] {
+    gmsh::option::setNumber("Mesh.Algorithm", options.triangle_algorithm);
+    gmsh::option::setNumber("Mesh.MeshSizeMax", 2.0 * record.size);
+    gmsh::option::setNumber("Mesh.SubdivisionAlgorithm", 1);
+  };
 
-  bool split = !transfinite;
-  if (transfinite) {
+  CadRecipe recipe = options.recipe;
+  if (recipe == CadRecipe::Auto) {
+    recipe = all_four                ? CadRecipe::Transfinite
+             : four_cornered.empty() ? CadRecipe::TriangleSplit
+                                     : CadRecipe::Mixed;
+  }
+  if (recipe == CadRecipe::Mixed && four_cornered.empty()) recipe = CadRecipe::TriangleSplit;
+  std::string split_reason =
+      options.recipe == CadRecipe::TriangleSplit
+          ? "asked for"
+          : "not transfinite: " + not_four + ", and no CAD face has 4 corners";
+
+  if (recipe == CadRecipe::Transfinite) {
     record.recipe = CadRecipe::Transfinite;
-    record.reason = transfinite_reason;
+    record.reason = "every one of the " + std::to_string(faces.size()) + " CAD faces has 4 corners";
+    set_transfinite(four_cornered, record.size);
+    for (const auto& [f, s] : four_cornered) structured.insert(f);
     gmsh::option::setNumber("Mesh.MeshSizeMax", record.size);
     if (const std::string why = generate(); !why.empty()) {
       if (options.recipe == CadRecipe::Transfinite) throw fail(why);
       // Auto: Gmsh could not make the faces transfinite after all; split triangles instead.
       record.warnings.push_back("transfinite meshing failed (" + why +
                                 "): the surface was made with triangle-split instead");
-      transfinite_reason = "transfinite meshing failed: " + why;
-      gmsh::model::mesh::clear();
-      gmsh::model::mesh::removeConstraints();
-      split = true;
+      split_reason = "transfinite meshing failed: " + why;
+      reset();
+      recipe = CadRecipe::TriangleSplit;
     }
   }
-  if (split) {
+  if (recipe == CadRecipe::Mixed) {
+    record.recipe = CadRecipe::Mixed;
+    set_transfinite(four_cornered, 2.0 * record.size);
+    for (const auto& [f, s] : four_cornered) structured.insert(f);
+    split_options();
+    std::string why = generate();
+    std::size_t crossing = 0;
+    if (why.empty()) {
+      // A loop leaving a structured face into a split one may come back across itself:
+      // check, and split every face instead when one does.
+      std::vector<std::size_t> used;
+      for (const auto& q : quads) used.insert(used.end(), q.begin(), q.end());
+      std::sort(used.begin(), used.end());
+      used.erase(std::unique(used.begin(), used.end()), used.end());
+      std::map<std::size_t, std::size_t> row;
+      for (std::size_t i = 0; i < used.size(); ++i) row.emplace(used[i], i);
+      MeshFile probe;
+      probe.points.resize(static_cast<Eigen::Index>(used.size()), 3);
+      for (std::size_t i = 0; i < used.size(); ++i) {
+        std::vector<double> xyz;
+        std::vector<double> uvw;
+        gmsh::model::mesh::getNode(used[i], xyz, uvw);
+        for (int k = 0; k < 3; ++k) probe.points(static_cast<Eigen::Index>(i), k) = xyz[k];
+      }
+      for (const auto& q : quads) {
+        probe.quads.push_back({NodeId(row.at(q[0])), NodeId(row.at(q[1])), NodeId(row.at(q[2])),
+                               NodeId(row.at(q[3]))});
+      }
+      crossing = diagnose(probe).self_intersecting_loops.value_or(0);
+      if (crossing > 0) {
+        why = std::to_string(crossing) + " self-intersecting loop(s)";
+      }
+    }
+    if (why.empty()) {
+      record.reason = std::to_string(four_cornered.size()) + " of the " +
+                      std::to_string(faces.size()) +
+                      " CAD faces have 4 corners and are structured, the others split from "
+                      "triangles (" +
+                      not_four + "); checked loop-clean";
+    } else {
+      record.warnings.push_back("the mixed surface was dropped (" + why +
+                                "): the surface was made with triangle-split instead");
+      split_reason = "mixed surface dropped: " + why;
+      reset();
+      recipe = CadRecipe::TriangleSplit;
+    }
+  }
+  if (recipe == CadRecipe::TriangleSplit) {
     record.recipe = CadRecipe::TriangleSplit;
-    record.reason = options.recipe == CadRecipe::TriangleSplit
-                        ? "asked for"
-                        : "not transfinite: " + transfinite_reason;
-    gmsh::option::setNumber("Mesh.Algorithm", 6);  // Frontal-Delaunay
-    // Splitting halves every triangle edge: triangles of twice the size give quads of it.
-    gmsh::option::setNumber("Mesh.MeshSizeMax", 2.0 * record.size);
-    gmsh::option::setNumber("Mesh.SubdivisionAlgorithm", 1);  // triangle -> 3 quads
+    record.reason = split_reason;
+    split_options();
     if (const std::string why = generate(); !why.empty()) throw fail(why);
   }
-
+  record.structured_faces = structured.size();
   record.quads = quads.size();
-  record.triangles = record.recipe == CadRecipe::TriangleSplit ? quads.size() / 3 : 0;
 
   // Nodes used by the quads, numbered by increasing Gmsh tag; coordinates and the CAD
   // entity each is classified on (for the distance check).
@@ -642,6 +732,102 @@ std::string gmsh_version() {
   std::string v;
   gmsh::option::getString("General.Version", v);
   return v;
+}
+
+/// An `a` x `b` x `c` plate with a hole of radius min(a, b) / 4 at its centre, as four blocks
+/// cut along its diagonals (each block: a plate edge, two diagonal cuts, an arc of the hole),
+/// made conforming by OpenCASCADE's fragment.
+void add_plate_with_hole_blocks(double a, double b, double c) {
+  namespace occ = gmsh::model::occ;
+  const double cx = a / 2;
+  const double cy = b / 2;
+  const double radius = std::min(a, b) / 4;
+  const std::array<std::array<double, 2>, 4> corners = {{{0.0, 0.0}, {a, 0.0}, {a, b}, {0.0, b}}};
+  const int centre = occ::addPoint(cx, cy, 0);
+  std::array<int, 4> corner{};
+  std::array<int, 4> on_hole{};
+  for (std::size_t k = 0; k < 4; ++k) {
+    const double dx = corners[k][0] - cx;
+    const double dy = corners[k][1] - cy;
+    const double len = std::hypot(dx, dy);
+    corner[k] = occ::addPoint(corners[k][0], corners[k][1], 0);
+    on_hole[k] = occ::addPoint(cx + radius * dx / len, cy + radius * dy / len, 0);
+  }
+  std::array<int, 4> edge{};
+  std::array<int, 4> cut{};
+  std::array<int, 4> arc{};
+  for (std::size_t k = 0; k < 4; ++k) {
+    const std::size_t n = (k + 1) % 4;
+    edge[k] = occ::addLine(corner[k], corner[n]);
+    cut[k] = occ::addLine(on_hole[k], corner[k]);
+    arc[k] = occ::addCircleArc(on_hole[k], centre, on_hole[n]);
+  }
+  gmsh::vectorpair pieces;
+  for (std::size_t k = 0; k < 4; ++k) {
+    const std::size_t n = (k + 1) % 4;
+    const int loop = occ::addCurveLoop({edge[k], -cut[n], -arc[k], cut[k]});
+    const int face = occ::addPlaneSurface({loop});
+    gmsh::vectorpair extruded;
+    occ::extrude({{2, face}}, 0, 0, c, extruded);
+    for (const auto& dt : extruded)
+      if (dt.first == 3) pieces.push_back(dt);
+  }
+  gmsh::vectorpair out;
+  std::vector<gmsh::vectorpair> map;
+  occ::fragment({pieces.front()}, gmsh::vectorpair(pieces.begin() + 1, pieces.end()), out, map);
+}
+
+/// A torus around the z axis (centre-line radius `major`, tube radius `minor`) as 20
+/// blocks: the tube's section in the plane y = 0 split as an O-grid (a square core of half
+/// side minor / 2.5 and four ring pieces, each bounded by a core side, two diagonal cuts
+/// and a quarter of the section circle), swept a quarter turn, copied three times around
+/// the axis, and made conforming by OpenCASCADE's fragment.
+void add_torus_blocks(double major, double minor) {
+  namespace occ = gmsh::model::occ;
+  const double half = minor / 2.5;
+  const double diagonal = minor / std::sqrt(2.0);
+  const std::array<std::array<double, 2>, 4> directions = {
+      {{1.0, -1.0}, {1.0, 1.0}, {-1.0, 1.0}, {-1.0, -1.0}}};  // (x - major, z), turning
+  const int centre = occ::addPoint(major, 0, 0);
+  std::array<int, 4> core{};
+  std::array<int, 4> rim{};
+  for (std::size_t k = 0; k < 4; ++k) {
+    core[k] = occ::addPoint(major + half * directions[k][0], 0, half * directions[k][1]);
+    rim[k] = occ::addPoint(major + diagonal * directions[k][0], 0, diagonal * directions[k][1]);
+  }
+  std::array<int, 4> side{};
+  std::array<int, 4> cut{};
+  std::array<int, 4> arc{};
+  for (std::size_t k = 0; k < 4; ++k) {
+    const std::size_t n = (k + 1) % 4;
+    side[k] = occ::addLine(core[k], core[n]);
+    cut[k] = occ::addLine(core[k], rim[k]);
+    arc[k] = occ::addCircleArc(rim[k], centre, rim[n]);
+  }
+  gmsh::vectorpair section;
+  section.emplace_back(
+      2, occ::addPlaneSurface({occ::addCurveLoop({side[0], side[1], side[2], side[3]})}));
+  for (std::size_t k = 0; k < 4; ++k) {
+    const std::size_t n = (k + 1) % 4;
+    const int loop = occ::addCurveLoop({side[k], cut[n], -arc[k], -cut[k]});
+    section.emplace_back(2, occ::addPlaneSurface({loop}));
+  }
+  const double quarter = std::acos(-1.0) / 2;
+  gmsh::vectorpair swept;
+  occ::revolve(section, 0, 0, 0, 0, 0, 1, quarter, swept);
+  gmsh::vectorpair blocks;
+  for (const auto& dt : swept)
+    if (dt.first == 3) blocks.push_back(dt);
+  const gmsh::vectorpair first = blocks;
+  for (int turn = 1; turn < 4; ++turn) {
+    gmsh::vectorpair copy;
+    occ::copy(first, copy);
+    occ::rotate(copy, 0, 0, 0, 0, 0, 1, turn * quarter);
+    blocks.insert(blocks.end(), copy.begin(), copy.end());
+  }
+  gmsh::vectorpair out;
+  std::vector<gmsh::vectorpair> map;
+  occ::fragment({blocks.front()}, gmsh::vectorpair(blocks.begin() + 1, blocks.end()), out, map);
 }
 
 /// Runs `body` with the Gmsh session locked, a fresh model and the logger on; always
@@ -752,6 +938,11 @@ CadSurface mesh_cad_surface(const CadPrimitive& primitive, const CadOptions& opt
       !std::isfinite(primitive.a) || !std::isfinite(primitive.b) || !std::isfinite(primitive.c)) {
     throw InvalidInput("a CAD primitive needs positive, finite dimensions");
   }
+  if ((primitive.kind == CadPrimitive::Kind::Torus ||
+       primitive.kind == CadPrimitive::Kind::TorusBlocks) &&
+      !(primitive.b < primitive.a)) {
+    throw InvalidInput("a CAD torus needs its tube radius b below its radius a");
+  }
   const auto t0 = std::chrono::steady_clock::now();
   return with_gmsh(options, [&] {
     CadRecord record;
@@ -793,6 +984,28 @@ CadSurface mesh_cad_surface(const CadPrimitive& primitive, const CadOptions& opt
           gmsh::model::occ::fragment({{3, first}}, {{3, second}, {3, third}}, out, map);
           break;
         }
+        case CadPrimitive::Kind::PlateWithHole: {
+          record.path = "generated plate with a hole";
+          const int plate = gmsh::model::occ::addBox(0, 0, 0, a, b, c);
+          const int hole =
+              gmsh::model::occ::addCylinder(a / 2, b / 2, -c, 0, 0, 3 * c, std::min(a, b) / 4);
+          gmsh::vectorpair out;
+          std::vector<gmsh::vectorpair> map;
+          gmsh::model::occ::cut({{3, plate}}, {{3, hole}}, out, map);
+          break;
+        }
+        case CadPrimitive::Kind::PlateWithHoleBlocks:
+          record.path = "generated plate with a hole of four blocks";
+          add_plate_with_hole_blocks(a, b, c);
+          break;
+        case CadPrimitive::Kind::Torus:
+          record.path = "generated torus";
+          gmsh::model::occ::addTorus(0, 0, 0, a, b);
+          break;
+        case CadPrimitive::Kind::TorusBlocks:
+          record.path = "generated torus of 20 blocks";
+          add_torus_blocks(a, b);
+          break;
       }
       gmsh::model::occ::synchronize();
     } catch (...) {

@@ -10,11 +10,11 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <set>
 #include <string>
 
 #include "stcweave/primal/pipeline.hpp"
 #include "stcweave/stc/errors.hpp"
+#include "support/cad.hpp"
 
 namespace stcweave::primal {
 namespace {
@@ -22,36 +22,17 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-#define SKIP_WITHOUT_GMSH() \
-  if (!has_cad_support()) GTEST_SKIP() << "built without Gmsh (STCWEAVE_WITH_GMSH=OFF)"
+using test::cad_surface;
+using test::max_boundary_distance;
+using test::mesh_cad;
 
 std::string data(const std::string& name) {
-  return std::string(STCWEAVE_SOURCE_DIR) + "/data/" + name;
-}
-
-MeshResult mesh_cad(const CadSurface& cad, bool untangle) {
-  MeshOptions options;
-  options.untangle = untangle;
-  return mesh_file(cad.file, options);
-}
-
-/// Largest distance of a boundary node of the hex mesh to an analytic surface; the boundary
-/// nodes are the nodes of the woven surface's quads, looked up in the hex mesh's points.
-template <typename Distance>
-double max_boundary_distance(const MeshResult& r, Distance distance) {
-  std::set<std::size_t> nodes;
-  for (const auto& q : r.surface.surface.quads)
-    for (const NodeId n : q) nodes.insert(n.index());
-  double worst = 0.0;
-  for (const std::size_t n : nodes) {
-    const Eigen::Vector3d p = r.mesh.points.row(static_cast<Eigen::Index>(n)).transpose();
-    worst = std::max(worst, distance(p));
-  }
-  return worst;
+  return test::repo_data(name);
 }
 
 TEST(Cad, RecipeNamesRoundTripAndUnknownNamesAreRefused) {
-  for (const CadRecipe r : {CadRecipe::Auto, CadRecipe::Transfinite, CadRecipe::TriangleSplit})
+  for (const CadRecipe r :
+       {CadRecipe::Auto, CadRecipe::Transfinite, CadRecipe::TriangleSplit, CadRecipe::Mixed})
     EXPECT_EQ(cad_recipe_from_name(cad_recipe_name(r)), r);
   try {
     (void)cad_recipe_from_name("paving");
@@ -90,10 +71,8 @@ TEST(Cad, ABuildWithoutGmshRefusesCadInputWithThatMessage) {
 }
 
 TEST(Cad, BoxIsTransfiniteAndWeavesToItsStructuredHexes) {
-  SKIP_WITHOUT_GMSH();
-  CadOptions options;
-  options.size = 0.25;
-  const CadSurface cad = mesh_cad_surface(CadPrimitive{CadPrimitive::Kind::Box, 1, 1, 1}, options);
+  STCWEAVE_SKIP_WITHOUT_GMSH();
+  const CadSurface cad = cad_surface(CadPrimitive{CadPrimitive::Kind::Box, 1, 1, 1}, 0.25);
   EXPECT_EQ(cad.record.recipe, CadRecipe::Transfinite);
   EXPECT_EQ(cad.record.faces, 6u);
   EXPECT_EQ(cad.record.quads, 96u);  // 4 x 4 per face
@@ -116,11 +95,9 @@ TEST(Cad, BoxIsTransfiniteAndWeavesToItsStructuredHexes) {
 }
 
 TEST(Cad, CylinderIsSplitFromTrianglesAndItsBoundaryNodesLieOnIt) {
-  SKIP_WITHOUT_GMSH();
-  CadOptions options;
-  options.size = 0.25;
+  STCWEAVE_SKIP_WITHOUT_GMSH();
   const CadSurface cad =
-      mesh_cad_surface(CadPrimitive{CadPrimitive::Kind::Cylinder, 0.5, 1.0, 1.0}, options);
+      cad_surface(CadPrimitive{CadPrimitive::Kind::Cylinder, 0.5, 1.0, 1.0}, 0.25);
   EXPECT_EQ(cad.record.recipe, CadRecipe::TriangleSplit);
   EXPECT_THAT(cad.record.reason, HasSubstr("not transfinite"));
   EXPECT_EQ(cad.record.faces, 3u);
@@ -143,10 +120,8 @@ TEST(Cad, CylinderIsSplitFromTrianglesAndItsBoundaryNodesLieOnIt) {
 }
 
 TEST(Cad, SphereNodesLieOnTheSphere) {
-  SKIP_WITHOUT_GMSH();
-  CadOptions options;
-  options.size = 0.35;
-  const CadSurface cad = mesh_cad_surface(CadPrimitive{CadPrimitive::Kind::Sphere, 0.5}, options);
+  STCWEAVE_SKIP_WITHOUT_GMSH();
+  const CadSurface cad = cad_surface(CadPrimitive{CadPrimitive::Kind::Sphere, 0.5}, 0.35);
   EXPECT_EQ(cad.record.recipe, CadRecipe::TriangleSplit);
   const MeshResult r = mesh_cad(cad, true);
   EXPECT_TRUE(r.validation.valid) << r.validation.summary();
@@ -155,25 +130,20 @@ TEST(Cad, SphereNodesLieOnTheSphere) {
   EXPECT_LT(d, 1e-9);
 }
 
-TEST(Cad, LBlockHasANonQuadrilateralFaceSoItIsSplit) {
-  SKIP_WITHOUT_GMSH();
-  CadOptions options;
-  options.size = 0.5;
+TEST(Cad, LBlockSplitFromTrianglesWhenAskedIsAValidComplex) {
+  STCWEAVE_SKIP_WITHOUT_GMSH();
   const CadSurface cad =
-      mesh_cad_surface(CadPrimitive{CadPrimitive::Kind::LBlock, 2, 2, 1}, options);
+      cad_surface(CadPrimitive{CadPrimitive::Kind::LBlock, 2, 2, 1}, 0.5, CadRecipe::TriangleSplit);
   EXPECT_EQ(cad.record.recipe, CadRecipe::TriangleSplit);
-  EXPECT_THAT(cad.record.reason, HasSubstr("6 curve uses"));
+  EXPECT_EQ(cad.record.reason, "asked for");
   EXPECT_EQ(cad.record.faces, 8u);
   const MeshResult r = mesh_cad(cad, false);
   EXPECT_TRUE(r.validation.valid) << r.validation.summary();
 }
 
 TEST(Cad, LBlockBuiltOfThreeBlocksIsTransfiniteAndStructured) {
-  SKIP_WITHOUT_GMSH();
-  CadOptions options;
-  options.size = 0.25;
-  const CadSurface cad =
-      mesh_cad_surface(CadPrimitive{CadPrimitive::Kind::LBlockBlocks, 2, 2, 1}, options);
+  STCWEAVE_SKIP_WITHOUT_GMSH();
+  const CadSurface cad = cad_surface(CadPrimitive{CadPrimitive::Kind::LBlockBlocks, 2, 2, 1}, 0.25);
   EXPECT_EQ(cad.record.recipe, CadRecipe::Transfinite);
   EXPECT_EQ(cad.record.volumes, 3u);
   EXPECT_EQ(cad.record.faces, 14u);  // the boundary of the union: glued faces left out
@@ -185,7 +155,7 @@ TEST(Cad, LBlockBuiltOfThreeBlocksIsTransfiniteAndStructured) {
 }
 
 TEST(Cad, TransfiniteOnACylinderIsRefusedNamingTheFace) {
-  SKIP_WITHOUT_GMSH();
+  STCWEAVE_SKIP_WITHOUT_GMSH();
   CadOptions options;
   options.recipe = CadRecipe::Transfinite;
   try {
@@ -198,7 +168,7 @@ TEST(Cad, TransfiniteOnACylinderIsRefusedNamingTheFace) {
 }
 
 TEST(Cad, TriangleSplitCanBeAskedForOnABox) {
-  SKIP_WITHOUT_GMSH();
+  STCWEAVE_SKIP_WITHOUT_GMSH();
   CadOptions options;
   options.size = 0.5;
   options.recipe = CadRecipe::TriangleSplit;
@@ -208,7 +178,7 @@ TEST(Cad, TriangleSplitCanBeAskedForOnABox) {
 }
 
 TEST(Cad, SameSolidAndOptionsGiveTheSameSurface) {
-  SKIP_WITHOUT_GMSH();
+  STCWEAVE_SKIP_WITHOUT_GMSH();
   CadOptions options;
   options.size = 0.3;
   const CadPrimitive cylinder{CadPrimitive::Kind::Cylinder, 0.5, 1.0};
@@ -221,21 +191,22 @@ TEST(Cad, SameSolidAndOptionsGiveTheSameSurface) {
 }
 
 TEST(Cad, DefaultSizeIsATenthOfTheDiagonal) {
-  SKIP_WITHOUT_GMSH();
+  STCWEAVE_SKIP_WITHOUT_GMSH();
   const CadSurface cad = mesh_cad_surface(CadPrimitive{CadPrimitive::Kind::Box, 3, 4, 12});
   EXPECT_NEAR(cad.record.size, 1.3, 1e-6);  // OpenCASCADE pads its boxes by ~1e-7
 }
 
 TEST(Cad, PlateWithASlotFromDataIsMeshedToAValidComplex) {
-  SKIP_WITHOUT_GMSH();
-  CadOptions options;
-  options.size = 0.5;
-  const CadSurface cad = mesh_cad_surface(data("plate_slot.step"), options);
+  STCWEAVE_SKIP_WITHOUT_GMSH();
+  const CadSurface cad = mesh_cad_surface(data("plate_slot.step"), test::cad_options(0.5));
   EXPECT_EQ(cad.record.format, "step");
   EXPECT_EQ(cad.record.volumes, 1u);
   EXPECT_EQ(cad.record.faces, 10u);
-  EXPECT_EQ(cad.record.recipe, CadRecipe::TriangleSplit);
-  EXPECT_EQ(cad.record.quads, 3 * cad.record.triangles);
+  // Its flat sides have four corners, its top and bottom (round slot end) do not.
+  EXPECT_EQ(cad.record.recipe, CadRecipe::Mixed);
+  EXPECT_GT(cad.record.structured_faces, 0u);
+  EXPECT_LT(cad.record.structured_faces, 10u);
+  EXPECT_GT(cad.record.quads, 3 * cad.record.triangles);
   EXPECT_LT(cad.record.max_cad_distance, 1e-7);
   const MeshResult r = mesh_cad(cad, false);
   EXPECT_TRUE(r.validation.valid) << r.validation.summary();
@@ -248,7 +219,7 @@ TEST(Cad, PlateWithASlotFromDataIsMeshedToAValidComplex) {
 }
 
 TEST(Cad, AnOpenShellIsNotAClosedSolid) {
-  SKIP_WITHOUT_GMSH();
+  STCWEAVE_SKIP_WITHOUT_GMSH();
   try {
     (void)mesh_cad_surface(data("open_shell.step"));
     FAIL() << "expected InvalidInput";
@@ -259,10 +230,8 @@ TEST(Cad, AnOpenShellIsNotAClosedSolid) {
 }
 
 TEST(Cad, AClosedShellWithoutAVolumeIsSewnIntoASolid) {
-  SKIP_WITHOUT_GMSH();
-  CadOptions options;
-  options.size = 0.5;
-  const CadSurface cad = mesh_cad_surface(data("closed_shell.step"), options);
+  STCWEAVE_SKIP_WITHOUT_GMSH();
+  const CadSurface cad = mesh_cad_surface(data("closed_shell.step"), test::cad_options(0.5));
   EXPECT_EQ(cad.record.volumes, 1u);
   ASSERT_FALSE(cad.record.warnings.empty());
   EXPECT_THAT(cad.record.warnings.front(), HasSubstr("sewn into 1 solid"));
@@ -273,7 +242,7 @@ TEST(Cad, AClosedShellWithoutAVolumeIsSewnIntoASolid) {
 }
 
 TEST(Cad, GarbageIsRefusedWithTheReadersReason) {
-  SKIP_WITHOUT_GMSH();
+  STCWEAVE_SKIP_WITHOUT_GMSH();
   const fs::path path = fs::temp_directory_path() / "stcweave_cad_garbage.step";
   {
     std::ofstream out(path);

@@ -13,14 +13,17 @@
 ///   block-structured grid. Opposite curves of a face get the same number of segments; the
 ///   number is chosen per chain of opposite curves (the longest curve of the chain divided
 ///   by the target size, rounded, at least 1).
-/// - `TriangleSplit`: Gmsh's Frontal-Delaunay triangles (`Mesh.Algorithm` 6) at twice the
-///   target size, each split into three quads (`Mesh.SubdivisionAlgorithm` 1 with no
-///   recombination; checked in Gmsh 4.8.4: the quads are exactly three times the
-///   triangles), so the quads' edges are about the target size.
+/// - `TriangleSplit`: Gmsh's triangles (`Mesh.Algorithm` `CadOptions::triangle_algorithm`,
+///   Delaunay by default) at twice the target size, each split into three quads
+///   (`Mesh.SubdivisionAlgorithm` 1 with no recombination; checked in Gmsh 4.8.4: the quads are
+///   exactly three times the triangles), so the quads' edges are about the target size.
+/// - `Mixed`: the four-cornered faces block-structured, the others split from triangles, at
+///   twice the target size, then every element split (a quad into four, a triangle into
+///   three). Such a surface is not loop-clean by construction, so it is checked
+///   (`diagnose`); one with a self-intersecting loop is dropped for `TriangleSplit`.
 /// `Auto` takes `Transfinite` when every face qualifies (falling back to `TriangleSplit`, with
-/// a warning, should Gmsh's transfinite meshing still fail), `TriangleSplit` otherwise, and
-/// says why in the record. Mixing the two on one solid is not done: a loop leaving a structured
-/// face into a split one is not known to stay clean.
+/// a warning, should Gmsh's transfinite meshing still fail), `Mixed` when some do and the
+/// result is loop-clean, `TriangleSplit` otherwise, and says why in the record.
 ///
 /// Side effect a library user should know: while Gmsh reads a file, the process's standard
 /// output (file descriptor 1) is redirected into a temporary file, because OpenCASCADE's
@@ -44,12 +47,16 @@ namespace stcweave::primal {
 
 /// How the surface of a CAD solid is meshed into quads.
 enum class CadRecipe {
-  Auto,           ///< `Transfinite` when every face has four corners, else `TriangleSplit`
-  Transfinite,    ///< block-structured faces (refused when a face does not have 4 corners)
-  TriangleSplit,  ///< triangles (Gmsh algorithm 6), each split into three quads
+  Auto,         ///< `Transfinite` when every face has four corners, else `Mixed` or `TriangleSplit`
+  Transfinite,  ///< block-structured faces (refused when a face does not have 4 corners)
+  /// triangles (Gmsh's `CadOptions::triangle_algorithm`), each split into three quads
+  TriangleSplit,
+  /// four-cornered faces structured, the others split from triangles; checked loop-clean
+  /// (else `TriangleSplit`, with a warning)
+  Mixed,
 };
 
-/// `"auto"`, `"transfinite"`, `"triangle-split"`.
+/// `"auto"`, `"transfinite"`, `"triangle-split"`, `"mixed"`.
 [[nodiscard]] std::string_view cad_recipe_name(CadRecipe recipe);
 
 /// The recipe named `name` (one of the names of `cad_recipe_name`).
@@ -63,6 +70,11 @@ struct CadOptions {
   double size = 0.0;
   /// Which recipe; `Auto` by default.
   CadRecipe recipe = CadRecipe::Auto;
+  /// Gmsh's 2D algorithm (`Mesh.Algorithm`) for the triangles of `TriangleSplit` and of the
+  /// split faces of `Mixed`: 1 MeshAdapt, 5 Delaunay (the default: it beats Gmsh's all-hex
+  /// mesh on more rows of the CAD table than 6, docs/cad.md), 6 Frontal-Delaunay. Others are
+  /// refused (`InvalidInput`).
+  int triangle_algorithm = 5;
   /// Let Gmsh (and OpenCASCADE's readers) print their messages, on standard error (the
   /// process's stdout is sent there while Gmsh works); false by default: Gmsh is silenced
   /// (`General.Terminal` 0, its messages go to its logger) and what OpenCASCADE prints is
@@ -81,7 +93,8 @@ struct CadRecord {
   std::size_t volumes = 0;             ///< solids in the file
   std::size_t faces = 0;               ///< CAD faces of the solids' boundary
   std::size_t curves = 0;              ///< CAD curves of those faces
-  std::size_t triangles = 0;           ///< `TriangleSplit`: triangles before the split (quads / 3)
+  std::size_t triangles = 0;           ///< triangles before the split (`TriangleSplit`: quads / 3)
+  std::size_t structured_faces = 0;    ///< CAD faces meshed block-structured
   std::size_t quads = 0;               ///< quads of the surface made
   std::size_t nodes = 0;               ///< nodes of the surface made
   /// Largest distance from a surface node to the CAD entity (face, curve or point) Gmsh
@@ -110,6 +123,18 @@ struct CadPrimitive {
     /// The same L-block as three boxes glued face to face (OpenCASCADE's fragment), as a
     /// block-structured CAD model is built: every face of the three has four corners.
     LBlockBlocks,
+    /// An `a` x `b` x `c` plate, corner at the origin, with a through-hole along z of radius
+    /// min(a, b) / 4 at its centre (genus 1; one solid).
+    PlateWithHole,
+    /// The same plate as four blocks glued face to face (cut along its diagonals), so that
+    /// every face of the four has four corners.
+    PlateWithHoleBlocks,
+    /// A torus around the z axis, centre-line radius `a`, tube radius `b` (one solid, one face).
+    Torus,
+    /// The same torus as 20 blocks glued face to face: the tube's section split as an O-grid
+    /// (a square core and four ring pieces), swept in four quarter turns, so that every face of
+    /// the 20 has four corners.
+    TorusBlocks,
   };
   Kind kind = Kind::Box;
   double a = 1.0;
