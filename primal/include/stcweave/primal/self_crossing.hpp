@@ -37,8 +37,9 @@ struct SelfCrossingOptions {
   bool free_nodes = true;
   /// When the search gives up with loops still crossed, weave that front anyway (with
   /// `free_nodes`): the weave never shrinks a loop that crosses itself, but shrinking the
-  /// others reroutes it.
-  bool weave_unsimple = true;
+  /// others reroutes it. Off: measured, it completed none of the generated spheres or shared
+  /// surfaces whose search gave up, and its weaves of large fronts cost minutes.
+  bool weave_unsimple = false;
   /// With `free_nodes`: when the weave of the front blocks, pillow one front face at a blocked
   /// valence-2 node and go on, at most this many times (`weave::WeaveOptions::
   /// recovery_pillows`; the larger of the two applies). Measured on the generated spheres: the
@@ -46,8 +47,9 @@ struct SelfCrossingOptions {
   std::size_t recovery_pillows = 64;
   /// With `free_nodes`: when the weave of the front blocks on loops that cross themselves, run
   /// the search for moves on the weave's own front and go on, at most this many times
-  /// (`weave::AttachedWeaveOptions`).
-  std::size_t untangle_rounds = 8;
+  /// (`weave::AttachedWeaveOptions`). 0 (off): measured, 8 rounds changed no outcome of the
+  /// generated spheres.
+  std::size_t untangle_rounds = 0;
 };
 
 /// What `weave_self_crossing` did.
