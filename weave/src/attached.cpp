@@ -38,10 +38,12 @@ std::optional<std::string> conflict(const WeaveState& state, const stc::Hex& hex
     }
   }
   std::vector<HexId> near;
-  for (const NodeId n : hex)
-    if (n.index() < old_nodes)
+  for (const NodeId n : hex) {
+    if (n.index() < old_nodes) {
       near.insert(near.end(), state.woven.hexes_at[n.index()].begin(),
                   state.woven.hexes_at[n.index()].end());
+    }
+  }
   std::sort(near.begin(), near.end());
   near.erase(std::unique(near.begin(), near.end()), near.end());
   for (const HexId g : near) {
