@@ -76,6 +76,9 @@ nlohmann::json self_crossing_json(const primal::SelfCrossingReport& s) {
           {"pillow_hexes", s.pillow_hexes},
           {"woven_hexes", s.woven_hexes},
           {"direct_join_violation", s.direct_join_violation},
+          {"free_nodes", s.free_nodes},
+          {"front_pillows", s.front_pillows},
+          {"filled", s.filled},
           {"seconds",
            {{"search", s.search_seconds}, {"weave", s.weave_seconds}, {"join", s.join_seconds}}}};
 }

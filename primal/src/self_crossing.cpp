@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <map>
 #include <optional>
 #include <unordered_map>
@@ -9,6 +10,7 @@
 #include "stcweave/primal/io.hpp"
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/stc/validate.hpp"
+#include "stcweave/weave/attached.hpp"
 
 namespace stcweave::primal {
 namespace {
@@ -116,10 +118,10 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
   report.used = true;
   auto t = std::chrono::steady_clock::now();
   report.moves = stc::untangle_loops(surface.surface, options.search);
-  const stc::LoopMoveResult& moves = report.moves;
+  const stc::LoopMoveResult moves = report.moves;  // a copy: a fill replaces report.moves
   report.attached_hexes = moves.hexes.hexes.size();
   report.search_seconds = seconds_since(t);
-  const auto give_up = [&](const stc::LoopMoveResult& at, const std::string& why) {
+  const auto give_up = [&](const stc::LoopMoveResult& at, const std::string& why) -> WeaveError {
     std::string where;
     if (!options.front_on_failure.empty()) {
       SurfaceMesh front{front_points(surface.points, at), at.front};
@@ -127,17 +129,24 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
       where = "; the front at that point (" + std::to_string(at.front.quads.size()) +
               " quads) is written to " + options.front_on_failure;
     }
-    throw WeaveError("self-intersecting loops: " + why + " with " +
-                     std::to_string(at.self_crossing_quads_after) + " of " +
-                     std::to_string(at.self_crossing_quads_before) +
-                     " self-crossing quads left after " + std::to_string(at.moves.size()) +
-                     " attached hexes" + where +
-                     "; raise the search bounds (--loop-moves-*) or re-mesh the surface so that "
-                     "fewer loops cross themselves");
+    std::string woven;
+    if (!report.weave_failure.empty()) {
+      woven = "; the weave of that front blocked too (" + report.weave_failure.substr(0, 600) +
+              (report.weave_failure.size() > 600 ? " ..." : "") + ")";
+    }
+    return WeaveError("self-intersecting loops: " + why + woven + " with " +
+                      std::to_string(at.self_crossing_quads_after) + " of " +
+                      std::to_string(at.self_crossing_quads_before) +
+                      " self-crossing quads left after " + std::to_string(at.moves.size()) +
+                      " attached hexes" + where +
+                      "; raise the search bounds (--loop-moves-*) or re-mesh the surface so that "
+                      "fewer loops cross themselves");
   };
   // Fills the front by moves alone: the whole complex is the attached hexes.
+  bool fill_tried = false;
   const auto fill = [&]() -> std::optional<weave::WeaveResult> {
-    if (moves.front.quads.size() > options.fill_up_to) return std::nullopt;
+    if (fill_tried || moves.front.quads.size() > options.fill_up_to) return std::nullopt;
+    fill_tried = true;
     const auto t_fill = std::chrono::steady_clock::now();
     stc::LoopMoveResult filled = stc::fill_front(moves, options.search);
     report.search_seconds += seconds_since(t_fill);
@@ -159,128 +168,216 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
     report.filled = true;
     return r;
   };
-  if (!moves.simple) {
-    if (auto r = fill()) return std::move(*r);
-    give_up(moves, "the search for front moves gave up (" + moves.stop_reason + ")");
-  }
-
-  // The front with compact node ids (all of them "input" nodes for the weaver).
-  t = std::chrono::steady_clock::now();
-  std::vector<NodeId> front_nodes;
-  for (const stc::Quad& q : moves.front.quads)
-    front_nodes.insert(front_nodes.end(), q.begin(), q.end());
-  std::sort(front_nodes.begin(), front_nodes.end());
-  front_nodes.erase(std::unique(front_nodes.begin(), front_nodes.end()), front_nodes.end());
-  std::unordered_map<std::int32_t, NodeId> compact;
-  for (std::size_t i = 0; i < front_nodes.size(); ++i)
-    compact.emplace(front_nodes[i].value(), NodeId(i));
-  stc::QuadSurface front;
-  front.num_nodes = front_nodes.size();
-  for (const stc::Quad& q : moves.front.quads) {
-    stc::Quad c{};
-    for (std::size_t i = 0; i < 4; ++i) c[i] = compact.at(q[i].value());
-    front.quads.push_back(c);
-  }
-  std::vector<std::array<double, 4>> angles;
-  if (!side_angles.empty()) {
-    std::unordered_map<std::uint64_t, std::size_t> directed;
-    const auto key = [](NodeId a, NodeId b) {
-      return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a.value())) << 32U) |
-             static_cast<std::uint32_t>(b.value());
-    };
-    for (std::size_t q = 0; q < front.quads.size(); ++q)
-      for (std::size_t i = 0; i < 4; ++i)
-        directed.emplace(key(front.quads[q][i], front.quads[q][(i + 1) % 4]), q);
-    angles.resize(front.quads.size());
-    for (std::size_t q = 0; q < front.quads.size(); ++q) {
-      for (std::size_t i = 0; i < 4; ++i) {
-        const auto it = directed.find(key(front.quads[q][(i + 1) % 4], front.quads[q][i]));
-        const std::size_t o = it == directed.end() ? q : it->second;
-        double a = 180.0;
-        if (moves.front_input[q] >= 0 && moves.front_input[o] >= 0) {
-          // An untouched input quad keeps its node order, so its side i is the input's.
-          a = side_angles[static_cast<std::size_t>(moves.front_input[q])][i];
-        } else if (moves.front_hex[q] >= 0 && moves.front_hex[q] == moves.front_hex[o]) {
-          a = 270.0;  // two faces of one attached hex: the hex fills a right angle there
-        }
-        angles[q][i] = a;
+  // The weave of the front with the attached hexes known to the weaver: their nodes are free
+  // (mergeable) interior nodes, and its seams see the hexes behind every front face.
+  const auto weave_free = [&](std::size_t pillows) -> std::optional<weave::WeaveResult> {
+    if (!options.free_nodes) return std::nullopt;
+    const auto t_free = std::chrono::steady_clock::now();
+    try {
+      weave::WeaveOptions free_options = weave_options;
+      free_options.recovery_pillows = pillows;
+      weave::AttachedWeaveOptions more;
+      more.untangle_rounds = options.untangle_rounds;
+      more.search = options.search;
+      weave::AttachedWeaveReport rounds;
+      weave::WeaveResult r = weave::weave_attached(surface.surface, moves.hexes, free_options,
+                                                   side_angles, more, &rounds);
+      report.weave_seconds += seconds_since(t_free);
+      const stc::ValidationReport check = stc::validate_hex_complex(r.complex, &surface.surface);
+      if (!check.valid) {
+        // Not an output: the next way is tried, and the violation is reported.
+        report.free_weave_violation = check.summary();
+        report.weave_failure += (report.weave_failure.empty() ? "" : "; ") +
+                                std::string("the free weave gave an invalid complex (") +
+                                check.summary() + ")";
+        return std::nullopt;
       }
+      report.untangle_rounds = rounds.rounds;
+      report.round_hexes = rounds.hexes;
+      report.woven_hexes = r.complex.hexes.size() - report.attached_hexes;
+      report.free_nodes = true;
+      report.front_pillows = r.stats.front_pillows;
+      return r;
+    } catch (const WeaveError& e) {
+      report.weave_seconds += seconds_since(t_free);
+      report.weave_failure += (report.weave_failure.empty() ? "" : "; ") + std::string("with ") +
+                              std::to_string(pillows) + " recovery pillows: " + e.what();
+      return std::nullopt;
+    } catch (const InvalidInput& e) {
+      throw InternalError(std::string("self-intersecting loops: the attached hexes are not a valid "
+                                      "start for the weave (") +
+                          e.what() + "); please report this surface");
     }
-  }
-  weave::WeaveResult woven;
-  try {
-    woven = weave::weave(front, weave_options, angles);
-  } catch (const WeaveError& e) {
-    report.weave_failure = e.what();
-    report.weave_seconds = seconds_since(t);
-    if (auto r = fill()) return std::move(*r);
-    give_up(moves, "the loops are simple after " + std::to_string(moves.moves.size()) +
-                       " attached hexes, but the weave of the front blocked (" + e.what() + ")");
-  }
-  report.woven_hexes = woven.complex.hexes.size();
-  report.weave_seconds = seconds_since(t);
-
-  // Join: attached hexes + woven hexes, woven nodes mapped back.
-  t = std::chrono::steady_clock::now();
-  const std::size_t m = front_nodes.size();
-  const std::size_t base = moves.hexes.num_nodes;
-  const auto join = [&](bool pillow) {
-    weave::WeaveResult r;
-    r.num_input_nodes = moves.num_input_nodes;
-    r.complex.hexes = moves.hexes.hexes;
-    r.hex_rule.assign(r.complex.hexes.size(), "attached");
-    r.hex_shrink.assign(r.complex.hexes.size(), -1);
-    const auto woven_node = [&](NodeId v) {
-      if (pillow) return NodeId(base + v.index());
-      return v.index() < m ? front_nodes[v.index()] : NodeId(base + (v.index() - m));
-    };
-    if (pillow) {
-      for (const stc::Quad& q : moves.front.quads) {
-        const auto star = [&](NodeId v) { return NodeId(base + compact.at(v.value()).index()); };
-        r.complex.hexes.push_back(
-            {q[0], q[3], q[2], q[1], star(q[0]), star(q[3]), star(q[2]), star(q[1])});
-        r.hex_rule.emplace_back("pillow");
-        r.hex_shrink.push_back(-1);
-      }
-    }
-    for (std::size_t h = 0; h < woven.complex.hexes.size(); ++h) {
-      stc::Hex x{};
-      for (std::size_t i = 0; i < 8; ++i) x[i] = woven_node(woven.complex.hexes[h][i]);
-      r.complex.hexes.push_back(x);
-      r.hex_rule.push_back(h < woven.hex_rule.size() ? woven.hex_rule[h] : "woven");
-      r.hex_shrink.push_back(h < woven.hex_shrink.size() ? woven.hex_shrink[h] : -1);
-    }
-    r.complex.num_nodes =
-        pillow ? base + woven.complex.num_nodes : base + (woven.complex.num_nodes - m);
-    r.stats = woven.stats;
-    r.trace = woven.trace;
-    return r;
   };
-  weave::WeaveResult result = join(options.always_pillow);
-  stc::ValidationReport check = stc::validate_hex_complex(result.complex, &surface.surface);
-  if (options.always_pillow && check.valid) {
-    report.pillowed = true;
-    report.pillow_hexes = moves.front.quads.size();
-  }
-  if (!check.valid) {
-    report.direct_join_violation = check.summary();
-    result = join(true);
-    check = stc::validate_hex_complex(result.complex, &surface.surface);
-    if (!check.valid) {
-      throw InternalError("self-intersecting loops: neither joining the " +
-                          std::to_string(report.attached_hexes) + " attached hexes to the " +
-                          std::to_string(report.woven_hexes) +
-                          " woven ones directly nor through a pillow layer gives a valid complex "
-                          "(direct: " +
-                          report.direct_join_violation + "; pillowed: " + check.summary() +
-                          "); please report this surface");
+  // The weave of the front with every front node fixed (the attached hexes unknown to the
+  // weaver), joined directly or through a pillow layer.
+  const auto weave_fixed = [&]() -> std::optional<weave::WeaveResult> {
+    // The front with compact node ids (all of them "input" nodes for the weaver).
+    t = std::chrono::steady_clock::now();
+    std::vector<NodeId> front_nodes;
+    for (const stc::Quad& q : moves.front.quads)
+      front_nodes.insert(front_nodes.end(), q.begin(), q.end());
+    std::sort(front_nodes.begin(), front_nodes.end());
+    front_nodes.erase(std::unique(front_nodes.begin(), front_nodes.end()), front_nodes.end());
+    std::unordered_map<std::int32_t, NodeId> compact;
+    for (std::size_t i = 0; i < front_nodes.size(); ++i)
+      compact.emplace(front_nodes[i].value(), NodeId(i));
+    stc::QuadSurface front;
+    front.num_nodes = front_nodes.size();
+    for (const stc::Quad& q : moves.front.quads) {
+      stc::Quad c{};
+      for (std::size_t i = 0; i < 4; ++i) c[i] = compact.at(q[i].value());
+      front.quads.push_back(c);
     }
-    report.pillowed = true;
-    report.pillow_hexes = moves.front.quads.size();
+    std::vector<std::array<double, 4>> angles;
+    if (!side_angles.empty()) {
+      std::unordered_map<std::uint64_t, std::size_t> directed;
+      const auto key = [](NodeId a, NodeId b) {
+        return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a.value())) << 32U) |
+               static_cast<std::uint32_t>(b.value());
+      };
+      for (std::size_t q = 0; q < front.quads.size(); ++q)
+        for (std::size_t i = 0; i < 4; ++i)
+          directed.emplace(key(front.quads[q][i], front.quads[q][(i + 1) % 4]), q);
+      angles.resize(front.quads.size());
+      for (std::size_t q = 0; q < front.quads.size(); ++q) {
+        for (std::size_t i = 0; i < 4; ++i) {
+          const auto it = directed.find(key(front.quads[q][(i + 1) % 4], front.quads[q][i]));
+          const std::size_t o = it == directed.end() ? q : it->second;
+          double a = 180.0;
+          if (moves.front_input[q] >= 0 && moves.front_input[o] >= 0) {
+            // An untouched input quad keeps its node order, so its side i is the input's.
+            a = side_angles[static_cast<std::size_t>(moves.front_input[q])][i];
+          } else if (moves.front_hex[q] >= 0 && moves.front_hex[q] == moves.front_hex[o]) {
+            a = 270.0;  // two faces of one attached hex: the hex fills a right angle there
+          }
+          angles[q][i] = a;
+        }
+      }
+    }
+    weave::WeaveResult woven;
+    try {
+      weave::WeaveOptions fixed_options = weave_options;
+      fixed_options.recovery_pillows =
+          std::max(fixed_options.recovery_pillows, options.recovery_pillows);
+      woven = weave::weave(front, fixed_options, angles);
+    } catch (const WeaveError& e) {
+      report.weave_failure +=
+          (report.weave_failure.empty() ? "" : "; with every front node fixed: ") +
+          std::string(e.what());
+      report.weave_seconds += seconds_since(t);
+      return std::nullopt;
+    }
+    report.woven_hexes = woven.complex.hexes.size();
+    report.weave_seconds += seconds_since(t);
+
+    // Join: attached hexes + woven hexes, woven nodes mapped back.
+    t = std::chrono::steady_clock::now();
+    const std::size_t m = front_nodes.size();
+    const std::size_t base = moves.hexes.num_nodes;
+    const auto join = [&](bool pillow) {
+      weave::WeaveResult r;
+      r.num_input_nodes = moves.num_input_nodes;
+      r.complex.hexes = moves.hexes.hexes;
+      r.hex_rule.assign(r.complex.hexes.size(), "attached");
+      r.hex_shrink.assign(r.complex.hexes.size(), -1);
+      const auto woven_node = [&](NodeId v) {
+        if (pillow) return NodeId(base + v.index());
+        return v.index() < m ? front_nodes[v.index()] : NodeId(base + (v.index() - m));
+      };
+      if (pillow) {
+        for (const stc::Quad& q : moves.front.quads) {
+          const auto star = [&](NodeId v) { return NodeId(base + compact.at(v.value()).index()); };
+          r.complex.hexes.push_back(
+              {q[0], q[3], q[2], q[1], star(q[0]), star(q[3]), star(q[2]), star(q[1])});
+          r.hex_rule.emplace_back("pillow");
+          r.hex_shrink.push_back(-1);
+        }
+      }
+      for (std::size_t h = 0; h < woven.complex.hexes.size(); ++h) {
+        stc::Hex x{};
+        for (std::size_t i = 0; i < 8; ++i) x[i] = woven_node(woven.complex.hexes[h][i]);
+        r.complex.hexes.push_back(x);
+        r.hex_rule.push_back(h < woven.hex_rule.size() ? woven.hex_rule[h] : "woven");
+        r.hex_shrink.push_back(h < woven.hex_shrink.size() ? woven.hex_shrink[h] : -1);
+      }
+      r.complex.num_nodes =
+          pillow ? base + woven.complex.num_nodes : base + (woven.complex.num_nodes - m);
+      r.stats = woven.stats;
+      r.trace = woven.trace;
+      return r;
+    };
+    weave::WeaveResult result = join(options.always_pillow);
+    stc::ValidationReport check = stc::validate_hex_complex(result.complex, &surface.surface);
+    if (options.always_pillow && check.valid) {
+      report.pillowed = true;
+      report.pillow_hexes = moves.front.quads.size();
+    }
+    if (!check.valid) {
+      report.direct_join_violation = check.summary();
+      result = join(true);
+      check = stc::validate_hex_complex(result.complex, &surface.surface);
+      if (!check.valid) {
+        throw InternalError("self-intersecting loops: neither joining the " +
+                            std::to_string(report.attached_hexes) + " attached hexes to the " +
+                            std::to_string(report.woven_hexes) +
+                            " woven ones directly nor through a pillow layer gives a valid complex "
+                            "(direct: " +
+                            report.direct_join_violation + "; pillowed: " + check.summary() +
+                            "); please report this surface");
+      }
+      report.pillowed = true;
+      report.pillow_hexes = moves.front.quads.size();
+    }
+    result.dual = rebuild_dual(result.complex, surface.surface);
+    report.join_seconds += seconds_since(t);
+    return result;
+  };
+
+  // The ways, in order: the free weave without recovery pillows, the fill by moves (small
+  // fronts), the free weave with recovery pillows, the weave with every front node fixed. On a
+  // small front (at most `fill_up_to` faces) every way runs and the fewest hexes win (ties: the
+  // earlier way); otherwise the first way that succeeds.
+  const std::size_t first_pillows = weave_options.recovery_pillows;
+  const std::size_t most = std::max(first_pillows, options.recovery_pillows);
+  std::vector<std::function<std::optional<weave::WeaveResult>()>> ways;
+  if (moves.simple || options.weave_unsimple)
+    ways.emplace_back([&] { return weave_free(first_pillows); });
+  ways.emplace_back(fill);
+  if ((moves.simple || options.weave_unsimple) && most > first_pillows)
+    ways.emplace_back([&] { return weave_free(most); });
+  if (moves.simple) ways.emplace_back(weave_fixed);
+  if (moves.simple && options.always_pillow) ways = {weave_fixed};
+  const bool best_of = moves.front.quads.size() <= options.fill_up_to;
+  const SelfCrossingReport base = report;
+  const auto keep_totals = [&](SelfCrossingReport& into) {
+    into.search_seconds = report.search_seconds;
+    into.weave_seconds = report.weave_seconds;
+    into.join_seconds = report.join_seconds;
+    into.weave_failure = report.weave_failure;
+    into.free_weave_violation = report.free_weave_violation;
+    into.direct_join_violation = report.direct_join_violation;
+  };
+  std::optional<std::pair<weave::WeaveResult, SelfCrossingReport>> best;
+  for (const auto& way : ways) {
+    SelfCrossingReport fresh = base;
+    keep_totals(fresh);
+    report = std::move(fresh);
+    std::optional<weave::WeaveResult> r = way();
+    if (!r) continue;
+    if (!best || r->complex.hexes.size() < best->first.complex.hexes.size())
+      best.emplace(std::move(*r), report);
+    if (!best_of) break;
   }
-  result.dual = rebuild_dual(result.complex, surface.surface);
-  report.join_seconds = seconds_since(t);
-  return result;
+  if (best) {
+    keep_totals(best->second);
+    report = std::move(best->second);
+    return std::move(best->first);
+  }
+  if (!moves.simple)
+    throw give_up(moves, "the search for front moves gave up (" + moves.stop_reason + ")");
+  throw give_up(moves, "the loops are simple after " + std::to_string(moves.moves.size()) +
+                           " attached hexes, but every weave of the front blocked");
 }
 
 }  // namespace stcweave::primal

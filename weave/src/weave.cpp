@@ -29,6 +29,7 @@
 #include <cmath>
 #include <functional>
 
+#include "driver.hpp"
 #include "select/bounded.hpp"
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/weave/front_pillow.hpp"
@@ -38,9 +39,7 @@
 #include "trace.hpp"
 
 namespace stcweave::weave {
-namespace {
 
-/// The front of `surface` with the input's angles, checked.
 WeaveState initial_state(const stc::QuadSurface& surface, const WeaveOptions& options,
                          const std::vector<std::array<double, 4>>& side_angles) {
   WeaveState state(surface);
@@ -63,12 +62,13 @@ WeaveState initial_state(const stc::QuadSurface& surface, const WeaveOptions& op
   return state;
 }
 
-/// The rule budget: `max_rules`, or 8 * quads^1.5 + 20000.
 std::size_t rule_budget(const stc::QuadSurface& surface, const WeaveOptions& options) {
   if (options.max_rules != 0) return options.max_rules;
   const double q = static_cast<double>(surface.quads.size());
   return static_cast<std::size_t>(8.0 * q * std::sqrt(q)) + 20000;
 }
+
+namespace {
 
 /// Shrinks the first candidate of `ranking` that shrinks. Backtracking: a shrink that ends
 /// blocked is undone (a checkpoint of the state is taken before it) and the next candidate is
@@ -179,7 +179,13 @@ WeaveResult assemble(WeaveState&& state) {
 
 WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options,
                   const std::vector<std::array<double, 4>>& side_angles) {
-  WeaveState state = initial_state(surface, options, side_angles);
+  return run_weave(initial_state(surface, options, side_angles), options,
+                   rule_budget(surface, options), {}, {});
+}
+
+WeaveResult run_weave(WeaveState state, const WeaveOptions& options, std::size_t max_rules,
+                      const std::function<void(WeaveState&, WeaveContext&)>& prepare,
+                      const std::function<bool(WeaveState&, WeaveContext&)>& on_blocked) {
   TraceRecorder recorder(options);
   ObserverList observers;
   if (options.trace || options.on_trace) observers.add(&recorder);
@@ -187,10 +193,11 @@ WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options,
   WeaveObserver* observer = observers.empty()       ? nullptr
                             : observers.size() == 1 ? observers.front()
                                                     : &observers;
-  WeaveContext ctx(options, observer, rule_budget(surface, options));
+  WeaveContext ctx(options, observer, max_rules);
   const Selection selection = selection_for(options);
   const ExtendedParameters& par = options.extended;
   const bool extended = options.rules == RuleSet::Extended;
+  if (prepare) prepare(state, ctx);  // e.g. hexes attached before the weave (attached.cpp)
 
   // Seams over the whole front first (an input may already hold valence-2 nodes).
   for (std::size_t n = state.front.num_nodes(); n-- > 0;) state.seam_work.push_back(NodeId(n));
@@ -233,6 +240,10 @@ WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options,
     std::string failures;
     if (!shrink_a_candidate(state, ctx, loops, std::move(ranking), failures,
                             bounded ? std::function<Ranking()>(exact) : nullptr)) {
+      if (on_blocked && on_blocked(state, ctx)) {  // e.g. front moves (attached.cpp)
+        seam_fixpoint(state, ctx);
+        continue;
+      }
       if (state.stats.front_pillows < options.recovery_pillows) {
         ++state.stats.front_pillows;
         pillow_blocked_node(state, ctx);

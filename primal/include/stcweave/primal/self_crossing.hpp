@@ -28,9 +28,28 @@ struct SelfCrossingOptions {
   /// A front of at most this many faces whose loops stay crossed, or whose weave blocks, is
   /// filled by the moves alone (`stc::fill_front`). 0: never.
   std::size_t fill_up_to = 200;
-  /// Join through the pillow layer even when the direct join is valid (for tests and
-  /// comparisons).
+  /// Weave the front with every front node fixed and join through the pillow layer even when
+  /// the direct join is valid (for tests and comparisons; no other way is tried).
   bool always_pillow = false;
+  /// Weave the front with the attached hexes known to the weaver (`weave::weave_attached`):
+  /// the nodes they made are free (mergeable) interior nodes of the weave. When that weave
+  /// blocks, the front is woven again with every front node fixed, as without this option.
+  bool free_nodes = true;
+  /// When the search gives up with loops still crossed, weave that front anyway (with
+  /// `free_nodes`): the weave never shrinks a loop that crosses itself, but shrinking the
+  /// others reroutes it. Off: measured, it completed none of the generated spheres or shared
+  /// surfaces whose search gave up, and its weaves of large fronts cost minutes.
+  bool weave_unsimple = false;
+  /// With `free_nodes`: when the weave of the front blocks, pillow one front face at a blocked
+  /// valence-2 node and go on, at most this many times (`weave::WeaveOptions::
+  /// recovery_pillows`; the larger of the two applies). Measured on the generated spheres: the
+  /// untangled fronts block on seams that would merge two input nodes, which a pillow lifts.
+  std::size_t recovery_pillows = 64;
+  /// With `free_nodes`: when the weave of the front blocks on loops that cross themselves, run
+  /// the search for moves on the weave's own front and go on, at most this many times
+  /// (`weave::AttachedWeaveOptions`). 0 (off): measured, 8 rounds changed no outcome of the
+  /// generated spheres.
+  std::size_t untangle_rounds = 0;
 };
 
 /// What `weave_self_crossing` did.
@@ -41,6 +60,16 @@ struct SelfCrossingReport {
   std::size_t pillow_hexes = 0;  ///< 0 unless the join needed the pillow layer
   std::size_t woven_hexes = 0;
   bool pillowed = false;
+  /// The weave ran with the attached hexes' nodes free (`SelfCrossingOptions::free_nodes`).
+  bool free_nodes = false;
+  /// Recovery pillows the weave of the front used (`weave::WeaveStats::front_pillows`).
+  std::size_t front_pillows = 0;
+  /// Rounds of front moves during that weave, and the hexes they attached
+  /// (`SelfCrossingOptions::untangle_rounds`).
+  std::size_t untangle_rounds = 0;
+  std::size_t round_hexes = 0;
+  /// When a free weave gave a complex that is not valid (never returned), its first violation.
+  std::string free_weave_violation;
   /// The front was filled by moves alone (`stc::fill_front`), without the weave.
   bool filled = false;
   /// Why the weave of the front failed, when it did and the moves filled the front instead.
