@@ -10,24 +10,10 @@
 #include <numeric>
 
 #include "bounded.hpp"
+#include "face_table.hpp"
 #include "stcweave/weave/select.hpp"
 
 namespace stcweave::weave {
-namespace {
-
-/// `edge_angle(front, f, side)` (rules/propagate.cpp) with the face across, `g`, already
-/// found: the same arithmetic, one incidence search fewer. Keep the two identical.
-double angle_across(const Front& front, FaceIndex f, int side, FaceSide g) {
-  const double a = front.face(f).side_angle[static_cast<std::size_t>(side)];
-  if (g.face == kNoFace) return a;
-  const double b = front.face(g.face).side_angle[static_cast<std::size_t>(g.index)];
-  const double da = a - 180.0, db = b - 180.0;
-  if ((da >= 0.0) == (db >= 0.0)) return 180.0 + (std::abs(da) >= std::abs(db) ? da : db);
-  return 180.0 + da + db;
-}
-
-}  // namespace
-
 FrontComponents front_components(const Front& front, Marks& marks) {
   FrontComponents out;
   out.component_of.assign(front.num_nodes(), 0);
@@ -181,10 +167,14 @@ std::array<TraceCandidate, 2> weigh_within(const Front& front, const Strip& stri
   return c;
 }
 
-std::array<TraceCandidate, 2> extended_properties(const Front& front, const Strip& strip,
-                                                  const FrontComponents& components,
-                                                  const ExtendedParameters& par, Marks& nodes,
-                                                  Marks& faces, Marks& faces2) {
+namespace {
+
+/// `extended_properties` with the front's neighbours and edge angles read from `table`.
+std::array<TraceCandidate, 2> extended_properties_in(const Front& front, const FaceTable& table,
+                                                     const Strip& strip,
+                                                     const FrontComponents& components,
+                                                     const ExtendedParameters& par, Marks& nodes,
+                                                     Marks& faces, Marks& faces2) {
   // The reliable weights come from the two side floods below when they settle them (see the
   // end); `weigh` is called only otherwise.
   std::array<TraceCandidate, 2> c;
@@ -202,10 +192,10 @@ std::array<TraceCandidate, 2> extended_properties(const Front& front, const Stri
   std::array<std::size_t, 2> side_sharp{0, 0};
   std::array<std::size_t, 2> nonconvex{0, 0};
   for (const stc::StripStep& p : strip) {
-    if (edge_angle(front, face_of(p), p.entry) <= par.little_sharp) ++crossed;
+    if (table.angle_of(face_of(p), p.entry) <= par.little_sharp) ++crossed;
     for (std::size_t d = 0; d < 2; ++d) {
       const int side = d == 0 ? (p.entry + 3) % 4 : (p.entry + 1) % 4;
-      const double a = edge_angle(front, face_of(p), side);
+      const double a = table.angle_of(face_of(p), side);
       if (a <= par.sharp) ++side_sharp[d];
       if (a > par.flat) ++nonconvex[d];
     }
@@ -252,9 +242,10 @@ std::array<TraceCandidate, 2> extended_properties(const Front& front, const Stri
       const std::int32_t fd = front.face(f).depth;
       if (fd > 0 && (depth == 0 || fd < depth)) depth = fd;
       for (int k = 0; k < 4; ++k) {
-        const FaceSide g = front.across(f, k);
+        if (table.angle_of(f, k) <= par.flat) continue;
+        const FaceSide& g = table.across_of(f, k);
         const bool once = g.face == kNoFace || strip_faces.contains(g.face) || f < g.face;
-        if (once && angle_across(front, f, k, g) > par.flat) ++nonconvex[di];
+        if (once) ++nonconvex[di];
       }
     }
     TraceCandidate& x = c[di];
@@ -296,15 +287,16 @@ std::array<TraceCandidate, 2> extended_properties(const Front& front, const Stri
   return c;
 }
 
-std::int32_t parallel_loop(const Front& front, const Strip& strip, stc::LoopSide side,
-                           const FrontLoops& loops, const ExtendedParameters& parameters) {
+/// `parallel_loop` with the front's neighbours and edge angles read from `table`.
+std::int32_t parallel_loop_in(const FaceTable& table, const Strip& strip, stc::LoopSide side,
+                              const FrontLoops& loops, const ExtendedParameters& parameters) {
   std::int32_t other = -1;
   const std::int32_t self = loops.loop_of[static_cast<std::size_t>(face_of(strip.front()))]
                                          [static_cast<std::size_t>(strip.front().direction())];
   for (const stc::StripStep& p : strip) {
     const int s = side == stc::LoopSide::Left ? (p.entry + 3) % 4 : (p.entry + 1) % 4;
-    if (edge_angle(front, face_of(p), s) > parameters.sharp) return -1;
-    const FaceSide g = front.across(face_of(p), s);
+    if (table.angle_of(face_of(p), s) > parameters.sharp) return -1;
+    const FaceSide& g = table.across_of(face_of(p), s);
     if (g.face == kNoFace) return -1;
     // the loop that has this edge as a side edge enters g perpendicularly to it
     const std::int32_t l =
@@ -317,22 +309,38 @@ std::int32_t parallel_loop(const Front& front, const Strip& strip, stc::LoopSide
   return other;
 }
 
+}  // namespace
+
+std::array<TraceCandidate, 2> extended_properties(const Front& front, const Strip& strip,
+                                                  const FrontComponents& components,
+                                                  const ExtendedParameters& par, Marks& nodes,
+                                                  Marks& faces, Marks& faces2) {
+  return extended_properties_in(front, face_table(front), strip, components, par, nodes, faces,
+                                faces2);
+}
+
+std::int32_t parallel_loop(const Front& front, const Strip& strip, stc::LoopSide side,
+                           const FrontLoops& loops, const ExtendedParameters& parameters) {
+  return parallel_loop_in(face_table(front), strip, side, loops, parameters);
+}
+
 std::vector<TraceCandidate> loop_candidates(const Front& front, const FrontLoops& loops,
                                             const FrontComponents& components, bool geometric,
                                             const ExtendedParameters& parameters, Marks& nodes,
                                             Marks& faces, Marks& faces2) {
   std::vector<TraceCandidate> out;
   out.reserve(loops.strips.size() * 2);
+  const FaceTable table = geometric ? face_table(front) : FaceTable{};
   for (std::size_t l = 0; l < loops.strips.size(); ++l) {
     const Strip& strip = loops.strips[l];
-    const auto pair =
-        geometric ? extended_properties(front, strip, components, parameters, nodes, faces, faces2)
-                  : weigh(front, strip, components, nodes, faces);
+    const auto pair = geometric ? extended_properties_in(front, table, strip, components,
+                                                         parameters, nodes, faces, faces2)
+                                : weigh(front, strip, components, nodes, faces);
     for (TraceCandidate c : pair) {
       c.loop = static_cast<std::int32_t>(l);
       if (geometric && parameters.parallel_crossing && !c.self_intersecting) {
         c.parallel_to =
-            parallel_loop(front, strip, static_cast<stc::LoopSide>(c.side), loops, parameters);
+            parallel_loop_in(table, strip, static_cast<stc::LoopSide>(c.side), loops, parameters);
       }
       out.push_back(c);
     }
