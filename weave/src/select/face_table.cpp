@@ -33,6 +33,23 @@ FaceTable face_table(const Front& front) {
       }
     }
   }
+  t.nodes.assign(n, stc::Quad{});
+  for (std::size_t fi = 0; fi < n; ++fi)
+    if (front.is_alive(static_cast<FaceIndex>(fi)))
+      t.nodes[fi] = front.face(static_cast<FaceIndex>(fi)).nodes;
+  const std::size_t num_nodes = front.num_nodes();
+  t.first_incident.assign(num_nodes + 1, 0);
+  std::size_t total = 0;
+  for (std::size_t v = 0; v < num_nodes; ++v) {
+    t.first_incident[v] = static_cast<std::uint32_t>(total);
+    total += front.faces_at(NodeId(v)).size();
+  }
+  t.first_incident[num_nodes] = static_cast<std::uint32_t>(total);
+  t.incident.reserve(total);
+  for (std::size_t v = 0; v < num_nodes; ++v) {
+    const auto& list = front.faces_at(NodeId(v));
+    t.incident.insert(t.incident.end(), list.begin(), list.end());
+  }
   return t;
 }
 

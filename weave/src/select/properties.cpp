@@ -208,7 +208,7 @@ std::array<TraceCandidate, 2> extended_properties_in(const Front& front, const F
     last_seen = node_seen;
     on_strip = 0;
     for (const stc::StripStep& p : strip) {
-      for (NodeId m : front.face(face_of(p)).nodes) {
+      for (NodeId m : table.nodes_of(face_of(p))) {
         if (nodes.is(m.index(), node_seen)) continue;
         nodes.set(m.index(), node_seen);
         ++on_strip;
@@ -216,7 +216,7 @@ std::array<TraceCandidate, 2> extended_properties_in(const Front& front, const F
     }
     std::vector<NodeId> stack;
     for (const stc::StripStep& p : strip) {
-      const stc::Quad& n = front.face(face_of(p)).nodes;
+      const stc::Quad& n = table.nodes_of(face_of(p));
       stack.push_back(quad_at(n, d == 0 ? p.entry : p.entry + 1));
       stack.push_back(quad_at(n, d == 0 ? p.entry + 3 : p.entry + 2));
     }
@@ -225,11 +225,11 @@ std::array<TraceCandidate, 2> extended_properties_in(const Front& front, const F
     while (!stack.empty()) {
       const NodeId n = stack.back();
       stack.pop_back();
-      for (FaceIndex f : front.faces_at(n)) {
+      for (FaceIndex f : table.faces_at(n)) {
         if (strip_faces.contains(f) || faces2.is(static_cast<std::size_t>(f), face_seen)) continue;
         faces2.set(static_cast<std::size_t>(f), face_seen);
         side_faces.push_back(f);
-        for (NodeId m : front.face(f).nodes) {
+        for (NodeId m : table.nodes_of(f)) {
           if (nodes.is(m.index(), node_seen)) continue;
           nodes.set(m.index(), node_seen);
           stack.push_back(m);
