@@ -6,12 +6,14 @@
 
 namespace stcweave::weave {
 
-FaceTable face_table(const Front& front) {
+FaceTable face_table(const Front& front, bool angles) {
   FaceTable t;
   const std::size_t n = front.face_capacity();
-  t.across.assign(4 * n, FaceSide{});
-  t.angle.assign(4 * n, 180.0);
-  for (std::size_t fi = 0; fi < n; ++fi) {
+  if (angles) {
+    t.across.assign(4 * n, FaceSide{});
+    t.angle.assign(4 * n, 180.0);
+  }
+  for (std::size_t fi = 0; angles && fi < n; ++fi) {
     const auto f = static_cast<FaceIndex>(fi);
     if (!front.is_alive(f)) continue;
     for (int k = 0; k < 4; ++k) {

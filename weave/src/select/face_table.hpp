@@ -45,7 +45,8 @@ struct FaceTable {
   }
 };
 
-/// The tables of `front` as it is now.
-[[nodiscard]] FaceTable face_table(const Front& front);
+/// The tables of `front` as it is now; without `angles`, `across` and `angle` stay empty (the
+/// reliable weights read only the incidence lists and face nodes).
+[[nodiscard]] FaceTable face_table(const Front& front, bool angles = true);
 
 }  // namespace stcweave::weave

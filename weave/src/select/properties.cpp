@@ -45,13 +45,14 @@ FrontComponents front_components(const Front& front, Marks& marks) {
 
 std::array<TraceCandidate, 2> weigh(const Front& front, const Strip& strip,
                                     const FrontComponents& components, Marks& nodes, Marks& faces) {
-  return weigh_within(front, strip, components, nodes, faces, {kNoLimit, kNoLimit}, nullptr);
+  return weigh_within(front, face_table(front, false), strip, components, nodes, faces,
+                      {kNoLimit, kNoLimit}, nullptr);
 }
 
-std::array<TraceCandidate, 2> weigh_within(const Front& front, const Strip& strip,
-                                           const FrontComponents& components, Marks& nodes,
-                                           Marks& faces, std::array<std::size_t, 2> limit,
-                                           bool* pruned) {
+std::array<TraceCandidate, 2> weigh_within(const Front& front, const FaceTable& table,
+                                           const Strip& strip, const FrontComponents& components,
+                                           Marks& nodes, Marks& faces,
+                                           std::array<std::size_t, 2> limit, bool* pruned) {
   if (pruned != nullptr) *pruned = false;
   std::array<TraceCandidate, 2> c;
   c[0].side = 0;
@@ -72,7 +73,7 @@ std::array<TraceCandidate, 2> weigh_within(const Front& front, const Strip& stri
   std::array<std::vector<NodeId>, 2> stack;
   std::size_t on_strip = 0;
   for (const stc::StripStep& p : strip) {
-    const stc::Quad& n = front.face(face_of(p)).nodes;
+    const stc::Quad& n = table.nodes_of(face_of(p));
     for (NodeId m : n) {
       if (nodes.is(m.index(), on)) continue;
       nodes.set(m.index(), on);
@@ -95,9 +96,9 @@ std::array<TraceCandidate, 2> weigh_within(const Front& front, const Strip& stri
     const auto di = static_cast<std::size_t>(d);
     const NodeId n = stack[di].back();
     stack[di].pop_back();
-    for (FaceIndex f : front.faces_at(n)) {
+    for (FaceIndex f : table.faces_at(n)) {
       if (faces.is(static_cast<std::size_t>(f), strip_stamp)) continue;
-      for (NodeId m : front.face(f).nodes) {
+      for (NodeId m : table.nodes_of(f)) {
         const std::uint32_t mark = nodes.get(m.index());
         if (mark == on || mark == side[di]) continue;
         if (mark == side[1 - di]) {
@@ -139,10 +140,10 @@ std::array<TraceCandidate, 2> weigh_within(const Front& front, const Strip& stri
     for (int d = 0; d < 2; ++d) {
       const std::uint32_t mark = nodes.fresh(front.num_nodes());
       for (const stc::StripStep& p : strip)
-        for (NodeId m : front.face(face_of(p)).nodes) nodes.set(m.index(), mark);
+        for (NodeId m : table.nodes_of(face_of(p))) nodes.set(m.index(), mark);
       std::vector<NodeId> st;
       for (const stc::StripStep& p : strip) {
-        const stc::Quad& n = front.face(face_of(p)).nodes;
+        const stc::Quad& n = table.nodes_of(face_of(p));
         st.push_back(quad_at(n, d == 0 ? p.entry : p.entry + 1));
         st.push_back(quad_at(n, d == 0 ? p.entry + 3 : p.entry + 2));
       }
@@ -150,9 +151,9 @@ std::array<TraceCandidate, 2> weigh_within(const Front& front, const Strip& stri
       while (!st.empty()) {
         const NodeId n = st.back();
         st.pop_back();
-        for (FaceIndex f : front.faces_at(n)) {
+        for (FaceIndex f : table.faces_at(n)) {
           if (faces.is(static_cast<std::size_t>(f), strip_stamp)) continue;
-          for (NodeId m : front.face(f).nodes) {
+          for (NodeId m : table.nodes_of(f)) {
             if (nodes.is(m.index(), mark)) continue;
             nodes.set(m.index(), mark);
             ++strict;
@@ -274,7 +275,8 @@ std::array<TraceCandidate, 2> extended_properties_in(const Front& front, const F
       c[d].weight = c[d].strictly_on_side + on_strip;
     }
   } else {
-    const std::array<TraceCandidate, 2> w = weigh(front, strip, components, nodes, faces);
+    const std::array<TraceCandidate, 2> w =
+        weigh_within(front, table, strip, components, nodes, faces, {kNoLimit, kNoLimit}, nullptr);
     for (std::size_t d = 0; d < 2; ++d) {
       c[d].side = w[d].side;
       c[d].length = w[d].length;
@@ -330,12 +332,13 @@ std::vector<TraceCandidate> loop_candidates(const Front& front, const FrontLoops
                                             Marks& faces, Marks& faces2) {
   std::vector<TraceCandidate> out;
   out.reserve(loops.strips.size() * 2);
-  const FaceTable table = geometric ? face_table(front) : FaceTable{};
+  const FaceTable table = face_table(front, geometric);
   for (std::size_t l = 0; l < loops.strips.size(); ++l) {
     const Strip& strip = loops.strips[l];
     const auto pair = geometric ? extended_properties_in(front, table, strip, components,
                                                          parameters, nodes, faces, faces2)
-                                : weigh(front, strip, components, nodes, faces);
+                                : weigh_within(front, table, strip, components, nodes, faces,
+                                               {kNoLimit, kNoLimit}, nullptr);
     for (TraceCandidate c : pair) {
       c.loop = static_cast<std::int32_t>(l);
       if (geometric && parameters.parallel_crossing && !c.self_intersecting) {
@@ -356,6 +359,7 @@ std::vector<TraceCandidate> loop_candidates_bounded(const Front& front, const Fr
   // The best so far among loops that do not cross themselves: its weight and its index in the
   // enumeration (side A of loop l is 2l, side B 2l + 1). A later candidate wins only with a
   // smaller weight, an earlier one also with an equal weight (the ranking's sort is stable).
+  const FaceTable table = face_table(front, false);
   std::size_t best = kNoLimit;
   std::size_t best_index = kNoLimit;
   // Passes with a cap on every flood, doubled until the best weight is within it: a loop
@@ -379,7 +383,7 @@ std::vector<TraceCandidate> loop_candidates_bounded(const Front& front, const Fr
       }
       bool pruned = false;
       std::array<TraceCandidate, 2> pair =
-          weigh_within(front, loops.strips[l], components, nodes, faces, limit, &pruned);
+          weigh_within(front, table, loops.strips[l], components, nodes, faces, limit, &pruned);
       for (std::size_t d = 0; d < 2; ++d) {
         TraceCandidate& c = pair[d];
         c.loop = static_cast<std::int32_t>(l);
