@@ -7,10 +7,10 @@
 #
 # Each run is `stcweave mesh box.obj --no-untangle` (positioning is not what is measured);
 # the weave time is the report's seconds.weave, the least of N runs (default 3; the machine
-# is shared). Prints one row per size and binary (binary index, k, hexes, weave seconds,
-# then position and total seconds of that same run), then per binary and stage (weave,
-# position, total) the exponent fitted over all sizes and over the sizes of 4,096 hexes and
-# more.
+# is shared). Prints one row per size and binary (binary index, k, hexes, weave seconds, then
+# the total seconds of that same run), then per binary and stage (weave, total) the exponent
+# fitted over all sizes and over the sizes of 4,096 hexes and more. The total includes
+# recovery, validation, quality and writing, but no untangling (`--no-untangle`).
 set -euo pipefail
 rules=reliable
 sizes="8 12 16 20 24 32"
@@ -39,7 +39,7 @@ for k in $sizes; do
 import json, sys
 r = json.load(open(sys.argv[1]))
 s = r["seconds"]
-print(sys.argv[2], sys.argv[3], r["hexes"], s["weave"], s.get("position", 0.0), s["total"])
+print(sys.argv[2], sys.argv[3], r["hexes"], s["weave"], s["total"])
 EOF
     done
     sort -k4 -g "$tmp/runs.txt" | head -1 >>"$rows"
@@ -52,7 +52,7 @@ import math, sys
 rows = [l.split() for l in open(sys.argv[1])]
 bins = sys.argv[2:]
 for i, b in enumerate(bins):
-  for col, stage in ((3, "weave"), (4, "position"), (5, "total")):
+  for col, stage in ((3, "weave"), (4, "total")):
     allpts = [(int(r[2]), float(r[col])) for r in rows if int(r[0]) == i and float(r[col]) > 0]
     for label, pts in (("all", allpts), (">=4096", [p for p in allpts if p[0] >= 4096])):
         if len(pts) < 2:
