@@ -48,11 +48,15 @@ while read -r name file; do
 import json, sys
 p = sys.argv[1]
 r = json.load(open(p))
-for k in ("seconds", "input", "output"):
+for k in ("input", "output"):
     r.pop(k, None)
-if isinstance(r.get("position"), dict):
-    r["position"].pop("seconds", None)
-json.dump(r, open(p, "w"), indent=1, sort_keys=True)
+def timeless(x):  # every "seconds" and "*_seconds" entry, at any depth, is a timing
+    if isinstance(x, dict):
+        return {k: timeless(v) for k, v in x.items() if k != "seconds" and not k.endswith("_seconds")}
+    if isinstance(x, list):
+        return [timeless(v) for v in x]
+    return x
+json.dump(timeless(r), open(p, "w"), indent=1, sort_keys=True)
 PY
     fi
     for ext in vtk json; do

@@ -89,12 +89,15 @@ strip_report() {
 import json, sys
 p = sys.argv[1]
 r = json.load(open(p))
-r.pop("seconds", None)
-r.pop("input", None)
-r.pop("output", None)
-if isinstance(r.get("position"), dict):
-    r["position"].pop("seconds", None)
-json.dump(r, open(p, "w"), indent=1, sort_keys=True)
+for k in ("input", "output"):
+    r.pop(k, None)
+def timeless(x):  # every "seconds" and "*_seconds" entry, at any depth, is a timing
+    if isinstance(x, dict):
+        return {k: timeless(v) for k, v in x.items() if k != "seconds" and not k.endswith("_seconds")}
+    if isinstance(x, list):
+        return [timeless(v) for v in x]
+    return x
+json.dump(timeless(r), open(p, "w"), indent=1, sort_keys=True)
 EOF
 }
 
@@ -124,7 +127,8 @@ while read -r name file; do
       echo "skip  $name $rules (over ${run_limit} s)"
       continue
     fi
-    { echo "$rc"; head -c 2000 "$base.err"; } >"$base.rc"
+    # the output folder's name (in messages naming a written file) is not a difference
+    { echo "$rc"; head -c 2000 "$base.err" | sed "s#$out/#DIR/#g"; } >"$base.rc"
     rm -f "$base.err"
     [[ -f $base.json ]] && strip_report "$base.json"
     runs=$((runs + 1))

@@ -7,8 +7,10 @@
 #
 # Each run is `stcweave mesh box.obj --no-untangle` (positioning is not what is measured);
 # the weave time is the report's seconds.weave, the least of N runs (default 3; the machine
-# is shared). Prints one row per size and binary (binary index, k, hexes, seconds), then per
-# binary the exponent fitted over all sizes and over the sizes of 4,096 hexes and more.
+# is shared). Prints one row per size and binary (binary index, k, hexes, weave seconds, then
+# the total seconds of that same run), then per binary and stage (weave, total) the exponent
+# fitted over all sizes and over the sizes of 4,096 hexes and more. The total includes
+# recovery, validation, quality and writing, but no untangling (`--no-untangle`).
 set -euo pipefail
 rules=reliable
 sizes="8 12 16 20 24 32"
@@ -36,7 +38,8 @@ for k in $sizes; do
       python3 - "$tmp/r.json" "$i" "$k" >>"$tmp/runs.txt" <<'EOF'
 import json, sys
 r = json.load(open(sys.argv[1]))
-print(sys.argv[2], sys.argv[3], r["hexes"], r["seconds"]["weave"])
+s = r["seconds"]
+print(sys.argv[2], sys.argv[3], r["hexes"], s["weave"], s["total"])
 EOF
     done
     sort -k4 -g "$tmp/runs.txt" | head -1 >>"$rows"
@@ -49,7 +52,8 @@ import math, sys
 rows = [l.split() for l in open(sys.argv[1])]
 bins = sys.argv[2:]
 for i, b in enumerate(bins):
-    allpts = [(int(h), float(t)) for j, k, h, t in rows if int(j) == i and float(t) > 0]
+  for col, stage in ((3, "weave"), (4, "total")):
+    allpts = [(int(r[2]), float(r[col])) for r in rows if int(r[0]) == i and float(r[col]) > 0]
     for label, pts in (("all", allpts), (">=4096", [p for p in allpts if p[0] >= 4096])):
         if len(pts) < 2:
             continue
@@ -58,6 +62,6 @@ for i, b in enumerate(bins):
         n = len(xs)
         mx, my = sum(xs) / n, sum(ys) / n
         slope = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
-        print(f"{b}: weave time ~ hexes^{slope:.2f} over {n} sizes ({label}: "
+        print(f"{b}: {stage} time ~ hexes^{slope:.2f} over {n} sizes ({label}: "
               f"{pts[0][0]}..{pts[-1][0]} hexes, {pts[0][1]:.3f}..{pts[-1][1]:.3f} s)")
 EOF

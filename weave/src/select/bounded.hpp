@@ -16,6 +16,7 @@
 #include <limits>
 #include <vector>
 
+#include "face_table.hpp"
 #include "stcweave/weave/select.hpp"
 
 namespace stcweave::weave {
@@ -26,10 +27,11 @@ inline constexpr std::size_t kNoLimit = std::numeric_limits<std::size_t>::max();
 /// `weigh`, stopping when both sides' floods have reached more nodes than `limit[side]` minus
 /// the strip's nodes; `*pruned` then says so and the counts are partial. A loop that crosses
 /// itself is always weighed in full. With `pruned` null, exactly `weigh`.
-std::array<TraceCandidate, 2> weigh_within(const Front& front, const Strip& strip,
-                                           const FrontComponents& components, Marks& nodes,
-                                           Marks& faces, std::array<std::size_t, 2> limit,
-                                           bool* pruned);
+/// The front's neighbours and incidence are read from `table` (`face_table(front)`).
+std::array<TraceCandidate, 2> weigh_within(const Front& front, const FaceTable& table,
+                                           const Strip& strip, const FrontComponents& components,
+                                           Marks& nodes, Marks& faces,
+                                           std::array<std::size_t, 2> limit, bool* pruned);
 
 /// The candidates of `loop_candidates` under `reliable` (same enumeration, loop l's sides at
 /// 2l and 2l + 1), pruned by branch and bound: the candidate `rank` puts first is exact and

@@ -10,24 +10,10 @@
 #include <numeric>
 
 #include "bounded.hpp"
+#include "face_table.hpp"
 #include "stcweave/weave/select.hpp"
 
 namespace stcweave::weave {
-namespace {
-
-/// `edge_angle(front, f, side)` (rules/propagate.cpp) with the face across, `g`, already
-/// found: the same arithmetic, one incidence search fewer. Keep the two identical.
-double angle_across(const Front& front, FaceIndex f, int side, FaceSide g) {
-  const double a = front.face(f).side_angle[static_cast<std::size_t>(side)];
-  if (g.face == kNoFace) return a;
-  const double b = front.face(g.face).side_angle[static_cast<std::size_t>(g.index)];
-  const double da = a - 180.0, db = b - 180.0;
-  if ((da >= 0.0) == (db >= 0.0)) return 180.0 + (std::abs(da) >= std::abs(db) ? da : db);
-  return 180.0 + da + db;
-}
-
-}  // namespace
-
 FrontComponents front_components(const Front& front, Marks& marks) {
   FrontComponents out;
   out.component_of.assign(front.num_nodes(), 0);
@@ -59,13 +45,14 @@ FrontComponents front_components(const Front& front, Marks& marks) {
 
 std::array<TraceCandidate, 2> weigh(const Front& front, const Strip& strip,
                                     const FrontComponents& components, Marks& nodes, Marks& faces) {
-  return weigh_within(front, strip, components, nodes, faces, {kNoLimit, kNoLimit}, nullptr);
+  return weigh_within(front, face_table(front, false), strip, components, nodes, faces,
+                      {kNoLimit, kNoLimit}, nullptr);
 }
 
-std::array<TraceCandidate, 2> weigh_within(const Front& front, const Strip& strip,
-                                           const FrontComponents& components, Marks& nodes,
-                                           Marks& faces, std::array<std::size_t, 2> limit,
-                                           bool* pruned) {
+std::array<TraceCandidate, 2> weigh_within(const Front& front, const FaceTable& table,
+                                           const Strip& strip, const FrontComponents& components,
+                                           Marks& nodes, Marks& faces,
+                                           std::array<std::size_t, 2> limit, bool* pruned) {
   if (pruned != nullptr) *pruned = false;
   std::array<TraceCandidate, 2> c;
   c[0].side = 0;
@@ -86,7 +73,7 @@ std::array<TraceCandidate, 2> weigh_within(const Front& front, const Strip& stri
   std::array<std::vector<NodeId>, 2> stack;
   std::size_t on_strip = 0;
   for (const stc::StripStep& p : strip) {
-    const stc::Quad& n = front.face(face_of(p)).nodes;
+    const stc::Quad& n = table.nodes_of(face_of(p));
     for (NodeId m : n) {
       if (nodes.is(m.index(), on)) continue;
       nodes.set(m.index(), on);
@@ -109,9 +96,9 @@ std::array<TraceCandidate, 2> weigh_within(const Front& front, const Strip& stri
     const auto di = static_cast<std::size_t>(d);
     const NodeId n = stack[di].back();
     stack[di].pop_back();
-    for (FaceIndex f : front.faces_at(n)) {
+    for (FaceIndex f : table.faces_at(n)) {
       if (faces.is(static_cast<std::size_t>(f), strip_stamp)) continue;
-      for (NodeId m : front.face(f).nodes) {
+      for (NodeId m : table.nodes_of(f)) {
         const std::uint32_t mark = nodes.get(m.index());
         if (mark == on || mark == side[di]) continue;
         if (mark == side[1 - di]) {
@@ -153,10 +140,10 @@ std::array<TraceCandidate, 2> weigh_within(const Front& front, const Strip& stri
     for (int d = 0; d < 2; ++d) {
       const std::uint32_t mark = nodes.fresh(front.num_nodes());
       for (const stc::StripStep& p : strip)
-        for (NodeId m : front.face(face_of(p)).nodes) nodes.set(m.index(), mark);
+        for (NodeId m : table.nodes_of(face_of(p))) nodes.set(m.index(), mark);
       std::vector<NodeId> st;
       for (const stc::StripStep& p : strip) {
-        const stc::Quad& n = front.face(face_of(p)).nodes;
+        const stc::Quad& n = table.nodes_of(face_of(p));
         st.push_back(quad_at(n, d == 0 ? p.entry : p.entry + 1));
         st.push_back(quad_at(n, d == 0 ? p.entry + 3 : p.entry + 2));
       }
@@ -164,9 +151,9 @@ std::array<TraceCandidate, 2> weigh_within(const Front& front, const Strip& stri
       while (!st.empty()) {
         const NodeId n = st.back();
         st.pop_back();
-        for (FaceIndex f : front.faces_at(n)) {
+        for (FaceIndex f : table.faces_at(n)) {
           if (faces.is(static_cast<std::size_t>(f), strip_stamp)) continue;
-          for (NodeId m : front.face(f).nodes) {
+          for (NodeId m : table.nodes_of(f)) {
             if (nodes.is(m.index(), mark)) continue;
             nodes.set(m.index(), mark);
             ++strict;
@@ -181,10 +168,14 @@ std::array<TraceCandidate, 2> weigh_within(const Front& front, const Strip& stri
   return c;
 }
 
-std::array<TraceCandidate, 2> extended_properties(const Front& front, const Strip& strip,
-                                                  const FrontComponents& components,
-                                                  const ExtendedParameters& par, Marks& nodes,
-                                                  Marks& faces, Marks& faces2) {
+namespace {
+
+/// `extended_properties` with the front's neighbours and edge angles read from `table`.
+std::array<TraceCandidate, 2> extended_properties_in(const Front& front, const FaceTable& table,
+                                                     const Strip& strip,
+                                                     const FrontComponents& components,
+                                                     const ExtendedParameters& par, Marks& nodes,
+                                                     Marks& faces, Marks& faces2) {
   // The reliable weights come from the two side floods below when they settle them (see the
   // end); `weigh` is called only otherwise.
   std::array<TraceCandidate, 2> c;
@@ -202,10 +193,10 @@ std::array<TraceCandidate, 2> extended_properties(const Front& front, const Stri
   std::array<std::size_t, 2> side_sharp{0, 0};
   std::array<std::size_t, 2> nonconvex{0, 0};
   for (const stc::StripStep& p : strip) {
-    if (edge_angle(front, face_of(p), p.entry) <= par.little_sharp) ++crossed;
+    if (table.angle_of(face_of(p), p.entry) <= par.little_sharp) ++crossed;
     for (std::size_t d = 0; d < 2; ++d) {
       const int side = d == 0 ? (p.entry + 3) % 4 : (p.entry + 1) % 4;
-      const double a = edge_angle(front, face_of(p), side);
+      const double a = table.angle_of(face_of(p), side);
       if (a <= par.sharp) ++side_sharp[d];
       if (a > par.flat) ++nonconvex[d];
     }
@@ -218,7 +209,7 @@ std::array<TraceCandidate, 2> extended_properties(const Front& front, const Stri
     last_seen = node_seen;
     on_strip = 0;
     for (const stc::StripStep& p : strip) {
-      for (NodeId m : front.face(face_of(p)).nodes) {
+      for (NodeId m : table.nodes_of(face_of(p))) {
         if (nodes.is(m.index(), node_seen)) continue;
         nodes.set(m.index(), node_seen);
         ++on_strip;
@@ -226,7 +217,7 @@ std::array<TraceCandidate, 2> extended_properties(const Front& front, const Stri
     }
     std::vector<NodeId> stack;
     for (const stc::StripStep& p : strip) {
-      const stc::Quad& n = front.face(face_of(p)).nodes;
+      const stc::Quad& n = table.nodes_of(face_of(p));
       stack.push_back(quad_at(n, d == 0 ? p.entry : p.entry + 1));
       stack.push_back(quad_at(n, d == 0 ? p.entry + 3 : p.entry + 2));
     }
@@ -235,11 +226,11 @@ std::array<TraceCandidate, 2> extended_properties(const Front& front, const Stri
     while (!stack.empty()) {
       const NodeId n = stack.back();
       stack.pop_back();
-      for (FaceIndex f : front.faces_at(n)) {
+      for (FaceIndex f : table.faces_at(n)) {
         if (strip_faces.contains(f) || faces2.is(static_cast<std::size_t>(f), face_seen)) continue;
         faces2.set(static_cast<std::size_t>(f), face_seen);
         side_faces.push_back(f);
-        for (NodeId m : front.face(f).nodes) {
+        for (NodeId m : table.nodes_of(f)) {
           if (nodes.is(m.index(), node_seen)) continue;
           nodes.set(m.index(), node_seen);
           stack.push_back(m);
@@ -252,9 +243,10 @@ std::array<TraceCandidate, 2> extended_properties(const Front& front, const Stri
       const std::int32_t fd = front.face(f).depth;
       if (fd > 0 && (depth == 0 || fd < depth)) depth = fd;
       for (int k = 0; k < 4; ++k) {
-        const FaceSide g = front.across(f, k);
+        if (table.angle_of(f, k) <= par.flat) continue;
+        const FaceSide& g = table.across_of(f, k);
         const bool once = g.face == kNoFace || strip_faces.contains(g.face) || f < g.face;
-        if (once && angle_across(front, f, k, g) > par.flat) ++nonconvex[di];
+        if (once) ++nonconvex[di];
       }
     }
     TraceCandidate& x = c[di];
@@ -283,7 +275,8 @@ std::array<TraceCandidate, 2> extended_properties(const Front& front, const Stri
       c[d].weight = c[d].strictly_on_side + on_strip;
     }
   } else {
-    const std::array<TraceCandidate, 2> w = weigh(front, strip, components, nodes, faces);
+    const std::array<TraceCandidate, 2> w =
+        weigh_within(front, table, strip, components, nodes, faces, {kNoLimit, kNoLimit}, nullptr);
     for (std::size_t d = 0; d < 2; ++d) {
       c[d].side = w[d].side;
       c[d].length = w[d].length;
@@ -296,15 +289,16 @@ std::array<TraceCandidate, 2> extended_properties(const Front& front, const Stri
   return c;
 }
 
-std::int32_t parallel_loop(const Front& front, const Strip& strip, stc::LoopSide side,
-                           const FrontLoops& loops, const ExtendedParameters& parameters) {
+/// `parallel_loop` with the front's neighbours and edge angles read from `table`.
+std::int32_t parallel_loop_in(const FaceTable& table, const Strip& strip, stc::LoopSide side,
+                              const FrontLoops& loops, const ExtendedParameters& parameters) {
   std::int32_t other = -1;
   const std::int32_t self = loops.loop_of[static_cast<std::size_t>(face_of(strip.front()))]
                                          [static_cast<std::size_t>(strip.front().direction())];
   for (const stc::StripStep& p : strip) {
     const int s = side == stc::LoopSide::Left ? (p.entry + 3) % 4 : (p.entry + 1) % 4;
-    if (edge_angle(front, face_of(p), s) > parameters.sharp) return -1;
-    const FaceSide g = front.across(face_of(p), s);
+    if (table.angle_of(face_of(p), s) > parameters.sharp) return -1;
+    const FaceSide& g = table.across_of(face_of(p), s);
     if (g.face == kNoFace) return -1;
     // the loop that has this edge as a side edge enters g perpendicularly to it
     const std::int32_t l =
@@ -317,22 +311,39 @@ std::int32_t parallel_loop(const Front& front, const Strip& strip, stc::LoopSide
   return other;
 }
 
+}  // namespace
+
+std::array<TraceCandidate, 2> extended_properties(const Front& front, const Strip& strip,
+                                                  const FrontComponents& components,
+                                                  const ExtendedParameters& par, Marks& nodes,
+                                                  Marks& faces, Marks& faces2) {
+  return extended_properties_in(front, face_table(front), strip, components, par, nodes, faces,
+                                faces2);
+}
+
+std::int32_t parallel_loop(const Front& front, const Strip& strip, stc::LoopSide side,
+                           const FrontLoops& loops, const ExtendedParameters& parameters) {
+  return parallel_loop_in(face_table(front), strip, side, loops, parameters);
+}
+
 std::vector<TraceCandidate> loop_candidates(const Front& front, const FrontLoops& loops,
                                             const FrontComponents& components, bool geometric,
                                             const ExtendedParameters& parameters, Marks& nodes,
                                             Marks& faces, Marks& faces2) {
   std::vector<TraceCandidate> out;
   out.reserve(loops.strips.size() * 2);
+  const FaceTable table = face_table(front, geometric);
   for (std::size_t l = 0; l < loops.strips.size(); ++l) {
     const Strip& strip = loops.strips[l];
-    const auto pair =
-        geometric ? extended_properties(front, strip, components, parameters, nodes, faces, faces2)
-                  : weigh(front, strip, components, nodes, faces);
+    const auto pair = geometric ? extended_properties_in(front, table, strip, components,
+                                                         parameters, nodes, faces, faces2)
+                                : weigh_within(front, table, strip, components, nodes, faces,
+                                               {kNoLimit, kNoLimit}, nullptr);
     for (TraceCandidate c : pair) {
       c.loop = static_cast<std::int32_t>(l);
       if (geometric && parameters.parallel_crossing && !c.self_intersecting) {
         c.parallel_to =
-            parallel_loop(front, strip, static_cast<stc::LoopSide>(c.side), loops, parameters);
+            parallel_loop_in(table, strip, static_cast<stc::LoopSide>(c.side), loops, parameters);
       }
       out.push_back(c);
     }
@@ -348,6 +359,7 @@ std::vector<TraceCandidate> loop_candidates_bounded(const Front& front, const Fr
   // The best so far among loops that do not cross themselves: its weight and its index in the
   // enumeration (side A of loop l is 2l, side B 2l + 1). A later candidate wins only with a
   // smaller weight, an earlier one also with an equal weight (the ranking's sort is stable).
+  const FaceTable table = face_table(front, false);
   std::size_t best = kNoLimit;
   std::size_t best_index = kNoLimit;
   // Passes with a cap on every flood, doubled until the best weight is within it: a loop
@@ -371,7 +383,7 @@ std::vector<TraceCandidate> loop_candidates_bounded(const Front& front, const Fr
       }
       bool pruned = false;
       std::array<TraceCandidate, 2> pair =
-          weigh_within(front, loops.strips[l], components, nodes, faces, limit, &pruned);
+          weigh_within(front, table, loops.strips[l], components, nodes, faces, limit, &pruned);
       for (std::size_t d = 0; d < 2; ++d) {
         TraceCandidate& c = pair[d];
         c.loop = static_cast<std::int32_t>(l);

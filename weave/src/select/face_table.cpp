@@ -1,0 +1,58 @@
+/// Per-selection face tables (face_table.hpp).
+
+#include "face_table.hpp"
+
+#include <cmath>
+
+namespace stcweave::weave {
+
+FaceTable face_table(const Front& front, bool angles) {
+  FaceTable t;
+  const std::size_t n = front.face_capacity();
+  if (angles) {
+    t.across.assign(4 * n, FaceSide{});
+    t.angle.assign(4 * n, 180.0);
+  }
+  for (std::size_t fi = 0; angles && fi < n; ++fi) {
+    const auto f = static_cast<FaceIndex>(fi);
+    if (!front.is_alive(f)) continue;
+    for (int k = 0; k < 4; ++k) {
+      const std::size_t at = 4 * fi + static_cast<std::size_t>(k);
+      const FaceSide g = front.across(f, k);
+      t.across[at] = g;
+      // edge_angle (rules/propagate.cpp) with `g` found once: keep the two identical.
+      const double a = front.face(f).side_angle[static_cast<std::size_t>(k)];
+      if (g.face == kNoFace) {
+        t.angle[at] = a;
+        continue;
+      }
+      const double b = front.face(g.face).side_angle[static_cast<std::size_t>(g.index)];
+      const double da = a - 180.0, db = b - 180.0;
+      if ((da >= 0.0) == (db >= 0.0)) {
+        t.angle[at] = 180.0 + (std::abs(da) >= std::abs(db) ? da : db);
+      } else {
+        t.angle[at] = 180.0 + da + db;
+      }
+    }
+  }
+  t.nodes.assign(n, stc::Quad{});
+  for (std::size_t fi = 0; fi < n; ++fi)
+    if (front.is_alive(static_cast<FaceIndex>(fi)))
+      t.nodes[fi] = front.face(static_cast<FaceIndex>(fi)).nodes;
+  const std::size_t num_nodes = front.num_nodes();
+  t.first_incident.assign(num_nodes + 1, 0);
+  std::size_t total = 0;
+  for (std::size_t v = 0; v < num_nodes; ++v) {
+    t.first_incident[v] = static_cast<std::uint32_t>(total);
+    total += front.faces_at(NodeId(v)).size();
+  }
+  t.first_incident[num_nodes] = static_cast<std::uint32_t>(total);
+  t.incident.reserve(total);
+  for (std::size_t v = 0; v < num_nodes; ++v) {
+    const auto& list = front.faces_at(NodeId(v));
+    t.incident.insert(t.incident.end(), list.begin(), list.end());
+  }
+  return t;
+}
+
+}  // namespace stcweave::weave
