@@ -28,7 +28,10 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <optional>
+#include <string>
 
+#include "recovery.hpp"
 #include "select/bounded.hpp"
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/weave/front_pillow.hpp"
@@ -175,27 +178,14 @@ WeaveResult assemble(WeaveState&& state) {
   return result;
 }
 
-}  // namespace
-
-WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options,
-                  const std::vector<std::array<double, 4>>& side_angles) {
-  WeaveState state = initial_state(surface, options, side_angles);
-  TraceRecorder recorder(options);
-  ObserverList observers;
-  if (options.trace || options.on_trace) observers.add(&recorder);
-  if (options.observer != nullptr) observers.add(options.observer);
-  WeaveObserver* observer = observers.empty()       ? nullptr
-                            : observers.size() == 1 ? observers.front()
-                                                    : &observers;
-  WeaveContext ctx(options, observer, rule_budget(surface, options));
-  const Selection selection = selection_for(options);
+/// The loop of Fig. 15 on `state` until the front is empty (nothing returned) or every
+/// (loop, side) is blocked (why, returned). `bounded`: the reliable selection may use branch
+/// and bound (nothing reads the other candidates).
+std::optional<std::string> weave_front(WeaveState& state, WeaveContext& ctx,
+                                       const Selection& selection, bool bounded) {
+  const WeaveOptions& options = ctx.options;
   const ExtendedParameters& par = options.extended;
   const bool extended = options.rules == RuleSet::Extended;
-
-  // Seams over the whole front first (an input may already hold valence-2 nodes).
-  for (std::size_t n = state.front.num_nodes(); n-- > 0;) state.seam_work.push_back(NodeId(n));
-  seam_fixpoint(state, ctx);
-
   std::size_t best_weight = 0;  // the last bounded selection's, where the next one starts
   while (state.front.num_faces() > 0) {
     // Fig. 15, "apply the non-convexity seam rule if necessary".
@@ -211,7 +201,6 @@ WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options,
                              ctx.faces, ctx.faces2);
     };
     // Branch and bound (select/bounded.hpp) when only the first candidate is read.
-    const bool bounded = !extended && !options.selection && observer == nullptr;
     std::vector<TraceCandidate> candidates =
         bounded ? loop_candidates_bounded(state.front, loops, components, ctx.nodes, ctx.faces,
                                           best_weight)
@@ -239,15 +228,49 @@ WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options,
         seam_fixpoint(state, ctx);
         continue;
       }
-      throw WeaveError("weave: every (loop, side) is blocked with " +
-                       std::to_string(state.front.num_faces()) + " front faces left and " +
-                       std::to_string(state.woven.hexes.size()) + " hexes built:" + failures);
+      return "every (loop, side) is blocked with " + std::to_string(state.front.num_faces()) +
+             " front faces left and " + std::to_string(state.woven.hexes.size()) +
+             " hexes built:" + failures;
     }
     seam_fixpoint(state, ctx);
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options,
+                  const std::vector<std::array<double, 4>>& side_angles) {
+  WeaveState state = initial_state(surface, options, side_angles);
+  TraceRecorder recorder(options);
+  ObserverList observers;
+  if (options.trace || options.on_trace) observers.add(&recorder);
+  if (options.observer != nullptr) observers.add(options.observer);
+  WeaveObserver* observer = observers.empty()       ? nullptr
+                            : observers.size() == 1 ? observers.front()
+                                                    : &observers;
+  WeaveContext ctx(options, observer, rule_budget(surface, options));
+  const Selection selection = selection_for(options);
+  const bool bounded =
+      options.rules != RuleSet::Extended && !options.selection && observer == nullptr;
+
+  // Seams over the whole front first (an input may already hold valence-2 nodes).
+  for (std::size_t n = state.front.num_nodes(); n-- > 0;) state.seam_work.push_back(NodeId(n));
+  seam_fixpoint(state, ctx);
+
+  std::vector<Recovery> recoveries;
+  if (const auto blocked = weave_front(state, ctx, selection, bounded)) {
+    // Only a weave that would end blocked gets here (recovery.hpp).
+    if (options.block_recovery == BlockRecovery::Off) throw WeaveError("weave: " + *blocked);
+    const auto run = [&](WeaveState& s, WeaveContext& c) {
+      return weave_front(s, c, selection, bounded);
+    };
+    recoveries = recover_blocked(state, ctx, run, *blocked);
   }
 
   WeaveResult result = assemble(std::move(state));
   result.trace = recorder.take();
+  result.recoveries = std::move(recoveries);
   return result;
 }
 
