@@ -265,7 +265,30 @@ WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options,
     const auto run = [&](WeaveState& s, WeaveContext& c) {
       return weave_front(s, c, selection, bounded);
     };
-    recoveries = recover_blocked(state, ctx, run, *blocked);
+    try {
+      recoveries = recover_blocked(state, ctx, run, *blocked);
+    } catch (const WeaveError&) {
+      if (options.rules != RuleSet::Extended || options.selection) throw;
+      // `extended` found nothing: the rest of the weave with the reliable selection (and its
+      // preconditions), from the same blocked front, recovered the same way.
+      WeaveOptions plain_options = options;
+      plain_options.rules = RuleSet::Reliable;
+      const Selection plain = selection_for(plain_options);
+      WeaveContext plain_ctx(plain_options, ctx.observer, ctx.max_rules);
+      plain_ctx.rules_applied = ctx.rules_applied;
+      plain_ctx.shrink_index = ctx.shrink_index;
+      const auto run_plain = [&](WeaveState& s, WeaveContext& c) {
+        return weave_front(s, c, plain, false);
+      };
+      const std::size_t hexes_before = state.woven.hexes.size();
+      const std::size_t faces_before = state.front.num_faces();
+      if (const auto again = run_plain(state, plain_ctx))
+        recoveries = recover_blocked(state, plain_ctx, run_plain, *again);
+      recoveries.insert(recoveries.begin(),
+                        Recovery{hexes_before, faces_before, 0, NodeId::invalid(),
+                                 "extended: no pillow completed the weave; reliable from here"});
+      ++state.stats.recoveries;
+    }
   }
 
   WeaveResult result = assemble(std::move(state));

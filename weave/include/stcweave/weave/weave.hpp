@@ -112,7 +112,9 @@ enum class BlockRecovery {
   /// A bounded search over pillows of blocked front faces (weave/src/recovery.cpp): each
   /// trial pillows one or more front faces and weaves on from there; the first trial that
   /// completes is kept, a trial that blocks again is searched further, up to the limits of
-  /// `RecoveryLimits`. Only a weave that would otherwise throw is changed.
+  /// `RecoveryLimits`. With `extended`, when that finds nothing, the rest of the weave runs
+  /// with the reliable selection from the same blocked front (recovered the same way). Only
+  /// a weave that would otherwise throw is changed.
   Auto,
 };
 
@@ -125,8 +127,8 @@ enum class BlockRecovery {
 struct RecoveryLimits {
   /// Pillows stacked on one path of the search (recoveries of one weave), default 24.
   std::size_t max_depth = 24;
-  /// Weaves tried from a blocked front, in all, default 200.
-  std::size_t max_trials = 200;
+  /// Weaves tried from a blocked front, in all, default 100.
+  std::size_t max_trials = 100;
   /// Valence-2 (then lowest-valence) nodes whose faces are tried at each block, default 4.
   std::size_t nodes_per_block = 4;
 };
@@ -250,7 +252,7 @@ struct WeaveStats {
 struct Recovery {
   std::size_t hexes_before = 0;  ///< hexes woven when the weave blocked
   std::size_t front_faces = 0;   ///< faces on the front then
-  std::size_t pillowed = 0;      ///< front faces pillowed (one hex each)
+  std::size_t pillowed = 0;      ///< front faces pillowed (one hex each); 0: rule set switch
   NodeId node;                   ///< the blocked node whose faces were pillowed (or invalid)
   std::string why;               ///< why the weave was blocked (the first refusals)
 };
