@@ -125,8 +125,8 @@ TEST_P(EveryEvenSphere, WeavesUnderBothRuleSets) {
       max_recoveries = std::max(max_recoveries, o.recoveries);
       if (!o.completed) {
         ++still_blocked[rules == RuleSet::Reliable ? 0 : 1];
-        std::cout << to_string(rules) << ", shape " << shapes << " still blocked: "
-                  << o.error.substr(0, 200) << "\n";
+        std::cout << to_string(rules) << ", shape " << shapes
+                  << " still blocked: " << o.error.substr(0, 200) << "\n";
       }
     }
     loop_clean = shapes;
