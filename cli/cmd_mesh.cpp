@@ -398,8 +398,11 @@ int run_mesh(const MeshArgs& a) {
     if (s.recoveries > 0) {
       std::cout << "recovery   the weave blocked; " << s.recoveries << " pillow"
                 << (s.recoveries == 1 ? "" : "s") << " of blocked front faces let it complete ("
-                << s.recovery_trials << " trials; first after "
-                << r.woven.recoveries.front().hexes_before << " hexes)\n";
+                << s.recovery_trials << " trials";
+      // The self-crossing and solid stages sum the counts but may not carry the records.
+      if (!r.woven.recoveries.empty())
+        std::cout << "; first after " << r.woven.recoveries.front().hexes_before << " hexes";
+      std::cout << ")\n";
     }
     std::cout << "pillow     " << r.pillow.reason << "\n";
     std::cout << "valid      " << (r.validation.valid ? "yes" : "NO: " + r.validation.summary())

@@ -23,10 +23,13 @@
 namespace stcweave::weave {
 namespace {
 
-WeaveOptions options_for(RuleSet rules, BlockRecovery recovery = BlockRecovery::Auto) {
+/// `check` (the front's invariants after every rule) costs most of the time of the family
+/// tests; the result is certified by `stc::validate_hex_complex` either way.
+WeaveOptions options_for(RuleSet rules, BlockRecovery recovery = BlockRecovery::Auto,
+                         bool check = false) {
   WeaveOptions o;
   o.rules = rules;
-  o.check = true;
+  o.check = check;
   o.block_recovery = recovery;
   return o;
 }
@@ -151,8 +154,8 @@ INSTANTIATE_TEST_SUITE_P(Closure, EveryEvenSphere,
 TEST(BlockRecovery, CompletesTheIssueCase) {
   const stc::QuadSurface s = test::issue11_twelve_quads();
   for (RuleSet rules : {RuleSet::Reliable, RuleSet::Extended}) {
-    EXPECT_THROW((void)weave(s, options_for(rules, BlockRecovery::Off)), WeaveError);
-    const WeaveResult r = weave(s, options_for(rules));
+    EXPECT_THROW((void)weave(s, options_for(rules, BlockRecovery::Off, true)), WeaveError);
+    const WeaveResult r = weave(s, options_for(rules, BlockRecovery::Auto, true));
     const stc::ValidationReport v = stc::validate_hex_complex(r.complex, &s);
     EXPECT_TRUE(v.valid) << to_string(rules) << ": " << v.summary();
     EXPECT_GT(r.stats.recoveries, 0U);
@@ -164,10 +167,11 @@ TEST(BlockRecovery, CompletesTheIssueCase) {
 }
 
 TEST(BlockRecovery, CompletesTheSeededFamily) {
-  // The seeded family of recovery_test.cpp: how many stay blocked with the recovery (pinned;
-  // without it 1 + 6 + 9 of 3 + 10 + 19 shapes block at 12, 16 and 20 quads).
+  // The seeded family of recovery_test.cpp up to 16 quads: how many stay blocked with the
+  // recovery (pinned; without it 1 + 6 of 3 + 10 shapes block at 12 and 16 quads). At 20
+  // quads one shape stays blocked under reliable (docs/weave-recovery.md; too slow here).
   std::array<std::size_t, 2> still_blocked{};
-  for (std::size_t n : {10, 12, 14, 16, 18, 20}) {
+  for (std::size_t n : {10, 12, 14, 16}) {
     for (const auto& s : test::seeded_family(n, 400, 11)) {
       for (RuleSet rules : {RuleSet::Reliable, RuleSet::Extended}) {
         const Outcome o = weave_both_ways(s, rules);
@@ -177,7 +181,7 @@ TEST(BlockRecovery, CompletesTheSeededFamily) {
       }
     }
   }
-  EXPECT_EQ(still_blocked[0], 1U) << "reliable";
+  EXPECT_EQ(still_blocked[0], 0U) << "reliable";
   EXPECT_EQ(still_blocked[1], 0U) << "extended";
 }
 
