@@ -357,7 +357,22 @@ int run_mesh(const MeshArgs& a) {
                      {"relaxed_preconditions", s.relaxed_preconditions},
                      {"rolled_back_shrinks", s.rolled_back_shrinks},
                      {"parallel_merges", s.parallel_merges},
-                     {"nonconvexity_seams", s.nonconvexity_seams}};
+                     {"nonconvexity_seams", s.nonconvexity_seams},
+                     {"recoveries", s.recoveries},
+                     {"recovery_trials", s.recovery_trials}};
+  {
+    // The block recovery (docs/weave-recovery.md): where each kept pillow went.
+    nlohmann::json recoveries = nlohmann::json::array();
+    for (const weave::Recovery& rec : r.woven.recoveries) {
+      recoveries.push_back(
+          {{"hexes_before", rec.hexes_before},
+           {"front_faces", rec.front_faces},
+           {"pillowed", rec.pillowed},
+           {"node", rec.node.is_valid() ? nlohmann::json(rec.node.str()) : nlohmann::json(nullptr)},
+           {"why", rec.why}});
+    }
+    report["weave"]["recovered"] = recoveries;
+  }
   if (r.self_crossing.used) report["self_crossing"] = self_crossing_json(r.self_crossing);
   report["seconds"] = {{"diagnose", r.seconds.diagnose},
                        {"orient", r.seconds.orient},
@@ -394,6 +409,15 @@ int run_mesh(const MeshArgs& a) {
     std::cout << "\nhexes      " << r.mesh.complex.hexes.size() << " (" << report["interior_nodes"]
               << " interior nodes, " << stc.sheets.size() << " sheets, " << stc.chords.size()
               << " chords, " << blind_chords << " blind)\n";
+    if (s.recoveries > 0) {
+      std::cout << "recovery   the weave blocked; " << s.recoveries << " pillow"
+                << (s.recoveries == 1 ? "" : "s") << " of blocked front faces let it complete ("
+                << s.recovery_trials << " trials";
+      // The self-crossing and solid stages sum the counts but may not carry the records.
+      if (!r.woven.recoveries.empty())
+        std::cout << "; first after " << r.woven.recoveries.front().hexes_before << " hexes";
+      std::cout << ")\n";
+    }
     std::cout << "pillow     " << r.pillow.reason << "\n";
     std::cout << "valid      " << (r.validation.valid ? "yes" : "NO: " + r.validation.summary())
               << "\n";

@@ -59,18 +59,26 @@ void add_weave_options(CLI::App* sub, WeaveArgs& args) {
                   "give up weaving after this many rule applications (0: 8 quads^1.5 + 20000)")
       ->capture_default_str()
       ->group(group);
+  sub->add_option("--block-recovery", args.block_recovery,
+                  "when every loop is blocked: auto (pillow blocked front faces and weave on, a "
+                  "bounded search; docs/weave-recovery.md) or off (the block is an error, exit 3)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "off"}))
+      ->group(group);
 }
 
 void apply_weave_options(const WeaveArgs& args, weave::WeaveOptions& options) {
   options.rules = weave::rule_set_from_name(args.rules);
   options.extended = args.extended;
   options.max_rules = args.max_rules;
+  options.block_recovery = weave::block_recovery_from_name(args.block_recovery);
   weave::check_parameters(options.extended);
 }
 
 nlohmann::json weave_options_json(const weave::WeaveOptions& options) {
   nlohmann::json j;
   j["rules"] = weave::to_string(options.rules);
+  j["block_recovery"] = weave::to_string(options.block_recovery);
   if (options.rules == weave::RuleSet::Extended) {
     const weave::ExtendedParameters& p = options.extended;
     j["sharp"] = p.sharp;

@@ -28,8 +28,11 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <optional>
+#include <string>
 
 #include "driver.hpp"
+#include "recovery.hpp"
 #include "select/bounded.hpp"
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/weave/front_pillow.hpp"
@@ -175,34 +178,17 @@ WeaveResult assemble(WeaveState&& state) {
   return result;
 }
 
-}  // namespace
+using BlockedHook = std::function<bool(WeaveState&, WeaveContext&)>;
 
-WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options,
-                  const std::vector<std::array<double, 4>>& side_angles) {
-  return run_weave(initial_state(surface, options, side_angles), options,
-                   rule_budget(surface, options), {}, {});
-}
-
-WeaveResult run_weave(WeaveState state, const WeaveOptions& options, std::size_t max_rules,
-                      const std::function<void(WeaveState&, WeaveContext&)>& prepare,
-                      const std::function<bool(WeaveState&, WeaveContext&)>& on_blocked) {
-  TraceRecorder recorder(options);
-  ObserverList observers;
-  if (options.trace || options.on_trace) observers.add(&recorder);
-  if (options.observer != nullptr) observers.add(options.observer);
-  WeaveObserver* observer = observers.empty()       ? nullptr
-                            : observers.size() == 1 ? observers.front()
-                                                    : &observers;
-  WeaveContext ctx(options, observer, max_rules);
-  const Selection selection = selection_for(options);
+/// The loop of Fig. 15 on `state` until the front is empty (nothing returned) or every
+/// (loop, side) is blocked (why, returned). `bounded`: the reliable selection may use branch
+/// and bound (nothing reads the other candidates). `on_blocked`: as in `run_weave`.
+std::optional<std::string> weave_front(WeaveState& state, WeaveContext& ctx,
+                                       const Selection& selection, bool bounded,
+                                       const BlockedHook& on_blocked) {
+  const WeaveOptions& options = ctx.options;
   const ExtendedParameters& par = options.extended;
   const bool extended = options.rules == RuleSet::Extended;
-  if (prepare) prepare(state, ctx);  // e.g. hexes attached before the weave (attached.cpp)
-
-  // Seams over the whole front first (an input may already hold valence-2 nodes).
-  for (std::size_t n = state.front.num_nodes(); n-- > 0;) state.seam_work.push_back(NodeId(n));
-  seam_fixpoint(state, ctx);
-
   std::size_t best_weight = 0;  // the last bounded selection's, where the next one starts
   while (state.front.num_faces() > 0) {
     // Fig. 15, "apply the non-convexity seam rule if necessary".
@@ -218,7 +204,6 @@ WeaveResult run_weave(WeaveState state, const WeaveOptions& options, std::size_t
                              ctx.faces, ctx.faces2);
     };
     // Branch and bound (select/bounded.hpp) when only the first candidate is read.
-    const bool bounded = !extended && !options.selection && observer == nullptr;
     std::vector<TraceCandidate> candidates =
         bounded ? loop_candidates_bounded(state.front, loops, components, ctx.nodes, ctx.faces,
                                           best_weight)
@@ -250,15 +235,80 @@ WeaveResult run_weave(WeaveState state, const WeaveOptions& options, std::size_t
         seam_fixpoint(state, ctx);
         continue;
       }
-      throw WeaveError("weave: every (loop, side) is blocked with " +
-                       std::to_string(state.front.num_faces()) + " front faces left and " +
-                       std::to_string(state.woven.hexes.size()) + " hexes built:" + failures);
+      return "every (loop, side) is blocked with " + std::to_string(state.front.num_faces()) +
+             " front faces left and " + std::to_string(state.woven.hexes.size()) +
+             " hexes built:" + failures;
     }
     seam_fixpoint(state, ctx);
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options,
+                  const std::vector<std::array<double, 4>>& side_angles) {
+  return run_weave(initial_state(surface, options, side_angles), options,
+                   rule_budget(surface, options), {}, {});
+}
+
+WeaveResult run_weave(WeaveState state, const WeaveOptions& options, std::size_t max_rules,
+                      const std::function<void(WeaveState&, WeaveContext&)>& prepare,
+                      const BlockedHook& on_blocked) {
+  TraceRecorder recorder(options);
+  ObserverList observers;
+  if (options.trace || options.on_trace) observers.add(&recorder);
+  if (options.observer != nullptr) observers.add(options.observer);
+  WeaveObserver* observer = observers.empty()       ? nullptr
+                            : observers.size() == 1 ? observers.front()
+                                                    : &observers;
+  WeaveContext ctx(options, observer, max_rules);
+  const Selection selection = selection_for(options);
+  const bool bounded =
+      options.rules != RuleSet::Extended && !options.selection && observer == nullptr;
+
+  if (prepare) prepare(state, ctx);  // e.g. hexes attached before the weave (attached.cpp)
+
+  // Seams over the whole front first (an input may already hold valence-2 nodes).
+  for (std::size_t n = state.front.num_nodes(); n-- > 0;) state.seam_work.push_back(NodeId(n));
+  seam_fixpoint(state, ctx);
+
+  std::vector<Recovery> recoveries;
+  if (const auto blocked = weave_front(state, ctx, selection, bounded, on_blocked)) {
+    // Only a weave that would end blocked gets here (recovery.hpp).
+    if (options.block_recovery == BlockRecovery::Off) throw WeaveError("weave: " + *blocked);
+    const auto run = [&](WeaveState& s, WeaveContext& c) {
+      return weave_front(s, c, selection, bounded, on_blocked);
+    };
+    try {
+      recoveries = recover_blocked(state, ctx, run, *blocked);
+    } catch (const WeaveError&) {
+      if (options.rules != RuleSet::Extended || options.selection) throw;
+      // `extended` found nothing: the rest of the weave with the reliable selection (and its
+      // preconditions), from the same blocked front, recovered the same way.
+      WeaveOptions plain_options = options;
+      plain_options.rules = RuleSet::Reliable;
+      const Selection plain = selection_for(plain_options);
+      WeaveContext plain_ctx(plain_options, ctx.observer, ctx.max_rules);
+      plain_ctx.rules_applied = ctx.rules_applied;
+      plain_ctx.shrink_index = ctx.shrink_index;
+      const auto run_plain = [&](WeaveState& s, WeaveContext& c) {
+        return weave_front(s, c, plain, false, on_blocked);
+      };
+      const std::size_t hexes_before = state.woven.hexes.size();
+      const std::size_t faces_before = state.front.num_faces();
+      if (const auto again = run_plain(state, plain_ctx))
+        recoveries = recover_blocked(state, plain_ctx, run_plain, *again);
+      recoveries.insert(recoveries.begin(),
+                        Recovery{hexes_before, faces_before, 0, NodeId::invalid(),
+                                 "extended: no pillow completed the weave; reliable from here"});
+      ++state.stats.recoveries;
+    }
   }
 
   WeaveResult result = assemble(std::move(state));
   result.trace = recorder.take();
+  result.recoveries = std::move(recoveries);
   return result;
 }
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <map>
+#include <utility>
 #include <vector>
 
 #include "stcweave/stc/errors.hpp"
@@ -19,6 +20,20 @@ std::size_t pillow_faces(WeaveState& state, WeaveContext& ctx,
   Front& front = state.front;
   WovenComplex& woven = state.woven;
   if (faces.empty()) return 0;
+  {
+    // Two pillowed faces sharing two edges (a valence-2 node) would give two hexes sharing
+    // two faces: the caller must not ask for it.
+    std::map<std::pair<NodeId, NodeId>, std::vector<FaceIndex>> by_edge;
+    for (FaceIndex f : faces) {
+      const stc::Quad q = front.face(f).nodes;
+      for (std::size_t k = 0; k < 4; ++k) by_edge[std::minmax(q[k], q[(k + 1) % 4])].push_back(f);
+    }
+    std::map<std::pair<FaceIndex, FaceIndex>, int> shared;
+    for (const auto& [edge, at] : by_edge) {
+      if (at.size() == 2 && ++shared[std::minmax(at[0], at[1])] > 1)
+        throw InternalError("pillow: two of the faces to pillow share two edges");
+    }
+  }
   std::vector<NodeId> copy(front.num_nodes(), NodeId::invalid());
   const auto copy_of = [&](NodeId n) {
     if (!copy[n.index()].is_valid()) copy[n.index()] = state.new_node();

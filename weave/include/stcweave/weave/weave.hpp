@@ -105,6 +105,34 @@ struct TraceEvent;
 struct Selection;
 class WeaveObserver;
 
+/// What the weave does when every (loop, side) is blocked (issue 11; docs/weave-recovery.md).
+enum class BlockRecovery {
+  /// The block is an error (`WeaveError`).
+  Off,
+  /// A bounded search over pillows of blocked front faces (weave/src/recovery.cpp): each
+  /// trial pillows one or more front faces and weaves on from there; the first trial that
+  /// completes is kept, a trial that blocks again is searched further, up to the limits of
+  /// `RecoveryLimits`. With `extended`, when that finds nothing, the rest of the weave runs
+  /// with the reliable selection from the same blocked front (recovered the same way). Only
+  /// a weave that would otherwise throw is changed.
+  Auto,
+};
+
+/// Name as used on the command line ("auto", "off").
+[[nodiscard]] std::string to_string(BlockRecovery recovery);
+/// \throw InvalidInput for an unknown name.
+[[nodiscard]] BlockRecovery block_recovery_from_name(const std::string& name);
+
+/// Bounds of the search of `BlockRecovery::Auto`.
+struct RecoveryLimits {
+  /// Pillows stacked on one path of the search (recoveries of one weave), default 24.
+  std::size_t max_depth = 24;
+  /// Weaves tried from a blocked front, in all, default 100.
+  std::size_t max_trials = 100;
+  /// Valence-2 (then lowest-valence) nodes whose faces are tried at each block, default 4.
+  std::size_t nodes_per_block = 4;
+};
+
 struct WeaveOptions {
   RuleSet rules = RuleSet::Reliable;
   ExtendedParameters extended;
@@ -126,6 +154,11 @@ struct WeaveOptions {
   /// whole front when there is none; stcweave/weave/front_pillow.hpp) and go on, at most
   /// this many times. 0: off (the block is an error).
   std::size_t recovery_pillows = 0;
+  /// When every (loop, side) is still blocked (after `recovery_pillows`): `Auto` (default)
+  /// searches for pillows that let the weave complete; `Off` throws.
+  BlockRecovery block_recovery = BlockRecovery::Auto;
+  /// Bounds of that search.
+  RecoveryLimits recovery;
   /// Called every `progress_every` rules when set.
   std::function<void(const WeaveProgress&)> progress;
   std::size_t progress_every = 20000;
@@ -209,6 +242,19 @@ struct WeaveStats {
   std::size_t rolled_back_shrinks = 0;
   /// Pillows put on a blocked front (`WeaveOptions::recovery_pillows`).
   std::size_t front_pillows = 0;
+  /// Pillows of the block recovery kept in the result (`WeaveOptions::block_recovery`).
+  std::size_t recoveries = 0;
+  /// Weaves tried from a blocked front by the block recovery (kept or not).
+  std::size_t recovery_trials = 0;
+};
+
+/// One pillow of the block recovery, as kept in the result.
+struct Recovery {
+  std::size_t hexes_before = 0;  ///< hexes woven when the weave blocked
+  std::size_t front_faces = 0;   ///< faces on the front then
+  std::size_t pillowed = 0;      ///< front faces pillowed (one hex each); 0: rule set switch
+  NodeId node;                   ///< the blocked node whose faces were pillowed (or invalid)
+  std::string why;               ///< why the weave was blocked (the first refusals)
 };
 
 struct WeaveResult {
@@ -223,6 +269,8 @@ struct WeaveResult {
   std::vector<std::string> hex_rule;
   WeaveStats stats;
   std::vector<TraceEvent> trace;
+  /// The pillows of the block recovery, in order (empty when the weave never blocked).
+  std::vector<Recovery> recoveries;
 };
 
 /// Weaves the hex complex bounded by `surface`.
@@ -230,7 +278,8 @@ struct WeaveResult {
 ///      component of genus 0, no self-intersecting loop (`primal::require_weavable` checks
 ///      this; `weave` re-checks what it relies on).
 /// \throw InvalidInput when the surface is not a valid front (open, pinched, degenerate).
-/// \throw WeaveError when every (loop, side) is blocked, naming the blocked nodes and why.
+/// \throw WeaveError when every (loop, side) is blocked and the block recovery is off or
+///        found nothing within its limits, naming the blocked nodes and why.
 /// \throw InternalError when an invariant breaks (with `options.check`).
 /// \cite seed sect. 2.2 (loop shrinking, weights), sect. 4-7 (extended rules, sequence).
 /// \param side_angles per input quad and side, the dihedral angle of that side's edge in

@@ -1,0 +1,245 @@
+// A weave that always completes (issue 11): the block recovery (WeaveOptions::block_recovery,
+// on by default) on every sphere quadrangulation of a closure enumerated in the test
+// (tests/weave/sphere_enum.hpp: from the cube by every node split and every cut in five, each
+// map once), the 12-quad case of the issue and the seeded family of sphere_quads.hpp, under
+// both rule sets. Every sphere quadrangulation with an even number of quads has a hex mesh,
+// so a weave that still throws here is a defect of the weaver, and fails the test.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "sphere_enum.hpp"
+#include "sphere_quads.hpp"
+#include "stcweave/stc/errors.hpp"
+#include "stcweave/stc/validate.hpp"
+#include "stcweave/weave/weave.hpp"
+#include "support/shapes.hpp"
+
+namespace stcweave::weave {
+namespace {
+
+/// `check` (the front's invariants after every rule) costs most of the time of the family
+/// tests; the result is certified by `stc::validate_hex_complex` either way.
+WeaveOptions options_for(RuleSet rules, BlockRecovery recovery = BlockRecovery::Auto,
+                         bool check = false) {
+  WeaveOptions o;
+  o.rules = rules;
+  o.check = check;
+  o.block_recovery = recovery;
+  return o;
+}
+
+/// What one shape gave: blocked without recovery, completed with it, its hexes.
+struct Outcome {
+  bool blocked_before = false;
+  bool completed = false;
+  std::size_t hexes = 0;
+  std::size_t recoveries = 0;
+  std::string error;
+};
+
+Outcome weave_both_ways(const stc::QuadSurface& s, RuleSet rules) {
+  Outcome out;
+  try {
+    (void)weave(s, options_for(rules, BlockRecovery::Off));
+  } catch (const WeaveError&) {
+    out.blocked_before = true;
+  }
+  try {
+    const WeaveResult r = weave(s, options_for(rules));
+    const stc::ValidationReport v = stc::validate_hex_complex(r.complex, &s);
+    EXPECT_TRUE(v.valid) << v.summary();
+    out.completed = v.valid;
+    out.hexes = r.complex.hexes.size();
+    out.recoveries = r.stats.recoveries;
+    EXPECT_EQ(r.recoveries.size(), r.stats.recoveries);
+    EXPECT_EQ(out.recoveries > 0, out.blocked_before)
+        << "the recovery acts exactly when the weave would block";
+  } catch (const WeaveError& e) {
+    out.error = e.what();
+  }
+  return out;
+}
+
+const std::map<std::size_t, std::vector<stc::QuadSurface>>& closure() {
+  static const auto c = test::sphere_closure(16);
+  return c;
+}
+
+TEST(SphereClosure, CountsAreThoseOfTheEnumeration) {
+  // Distinct maps (up to relabelling and rotation; mirror images count twice) with 6..16
+  // quads. Pinned so that a change of the generator is seen.
+  std::map<std::size_t, std::size_t> counts;
+  for (const auto& [n, shapes] : closure()) counts[n] = shapes.size();
+  const std::map<std::size_t, std::size_t> expected = {{6, 1},   {7, 0},    {8, 1},   {9, 1},
+                                                       {10, 4},  {11, 3},   {12, 16}, {13, 26},
+                                                       {14, 99}, {15, 256}, {16, 895}};
+  for (const auto& [n, c] : counts) std::cout << "quads " << n << ": " << c << "\n";
+  EXPECT_EQ(counts, expected);
+}
+
+TEST(SphereClosure, HoldsTheIssueCase) {
+  const stc::QuadSurface issue = test::issue11_twelve_quads();
+  stc::QuadSurface mirror = issue;
+  for (stc::Quad& q : mirror.quads) q = stc::reversed(q);
+  const auto code = test::canonical_code(issue);
+  const auto mirror_code = test::canonical_code(mirror);
+  bool found = false;
+  for (const auto& s : closure().at(12)) {
+    const auto c = test::canonical_code(s);
+    found = found || c == code || c == mirror_code;
+  }
+  EXPECT_TRUE(found);
+}
+
+/// Loop-clean shapes of the closure with `quads` quads, and how many stay blocked with the
+/// recovery (pinned).
+struct ClosureCase {
+  std::size_t quads;
+  std::size_t loop_clean;
+  std::size_t blocked_reliable;
+  std::size_t blocked_extended;
+};
+
+class EveryEvenSphere : public ::testing::TestWithParam<ClosureCase> {};
+
+TEST_P(EveryEvenSphere, WeavesUnderBothRuleSets) {
+  const std::size_t n = GetParam().quads;
+  std::size_t loop_clean = 0;
+  std::array<std::size_t, 2> still_blocked{};
+  for (RuleSet rules : {RuleSet::Reliable, RuleSet::Extended}) {
+    std::size_t shapes = 0;
+    std::size_t blocked = 0;
+    std::size_t completed = 0;
+    std::size_t max_hexes = 0;
+    std::size_t max_recoveries = 0;
+    for (const auto& s : closure().at(n)) {
+      if (stc::find_loops(s).num_self_intersecting() != 0) continue;
+      ++shapes;
+      const Outcome o = weave_both_ways(s, rules);
+      blocked += o.blocked_before ? 1 : 0;
+      completed += o.completed ? 1 : 0;
+      max_hexes = std::max(max_hexes, o.hexes);
+      max_recoveries = std::max(max_recoveries, o.recoveries);
+      if (!o.completed) {
+        ++still_blocked[rules == RuleSet::Reliable ? 0 : 1];
+        std::cout << to_string(rules) << ", shape " << shapes
+                  << " still blocked: " << o.error.substr(0, 200) << "\n";
+      }
+    }
+    loop_clean = shapes;
+    std::cout << n << " quads, " << to_string(rules) << ": " << shapes
+              << " loop-clean shapes, blocked without recovery " << blocked << ", completed "
+              << completed << ", max hexes " << max_hexes << ", max recoveries " << max_recoveries
+              << "\n";
+  }
+  EXPECT_EQ(loop_clean, GetParam().loop_clean);
+  // Known defects left (docs/weave-recovery.md): one more fails the test, one fewer asks for
+  // the pinned count to be lowered.
+  EXPECT_EQ(still_blocked[0], GetParam().blocked_reliable) << "reliable, still blocked";
+  EXPECT_EQ(still_blocked[1], GetParam().blocked_extended) << "extended, still blocked";
+}
+
+INSTANTIATE_TEST_SUITE_P(Closure, EveryEvenSphere,
+                         ::testing::Values(ClosureCase{6, 1, 0, 0}, ClosureCase{8, 0, 0, 0},
+                                           ClosureCase{10, 1, 0, 0}, ClosureCase{12, 4, 0, 0},
+                                           ClosureCase{14, 4, 0, 0}, ClosureCase{16, 18, 0, 0}),
+                         [](const auto& info) { return std::to_string(info.param.quads); });
+
+TEST(BlockRecovery, CompletesTheIssueCase) {
+  const stc::QuadSurface s = test::issue11_twelve_quads();
+  for (RuleSet rules : {RuleSet::Reliable, RuleSet::Extended}) {
+    EXPECT_THROW((void)weave(s, options_for(rules, BlockRecovery::Off, true)), WeaveError);
+    const WeaveResult r = weave(s, options_for(rules, BlockRecovery::Auto, true));
+    const stc::ValidationReport v = stc::validate_hex_complex(r.complex, &s);
+    EXPECT_TRUE(v.valid) << to_string(rules) << ": " << v.summary();
+    EXPECT_GT(r.stats.recoveries, 0U);
+    ASSERT_FALSE(r.recoveries.empty());
+    EXPECT_NE(r.recoveries.front().why.find("blocked"), std::string::npos);
+    std::cout << to_string(rules) << ": " << r.complex.hexes.size() << " hexes, "
+              << r.stats.recoveries << " recoveries, " << r.stats.recovery_trials << " trials\n";
+  }
+}
+
+TEST(BlockRecovery, CompletesTheSeededFamily) {
+  // The seeded family of recovery_test.cpp up to 16 quads: how many stay blocked with the
+  // recovery (pinned; without it 1 + 6 of 3 + 10 shapes block at 12 and 16 quads). At 20
+  // quads one shape stays blocked under reliable (docs/weave-recovery.md; too slow here).
+  std::array<std::size_t, 2> still_blocked{};
+  for (std::size_t n : {10, 12, 14, 16}) {
+    for (const auto& s : test::seeded_family(n, 400, 11)) {
+      for (RuleSet rules : {RuleSet::Reliable, RuleSet::Extended}) {
+        const Outcome o = weave_both_ways(s, rules);
+        if (o.completed) continue;
+        ++still_blocked[rules == RuleSet::Reliable ? 0 : 1];
+        std::cout << n << " quads, " << to_string(rules) << ": " << o.error.substr(0, 200) << "\n";
+      }
+    }
+  }
+  EXPECT_EQ(still_blocked[0], 0U) << "reliable";
+  EXPECT_EQ(still_blocked[1], 0U) << "extended";
+}
+
+TEST(BlockRecovery, LeavesAWeaveThatCompletesAlone) {
+  // Boxes complete without recovery: the result is the one with the recovery off, unchanged.
+  for (const int k : {2, 3}) {
+    const auto box = test::box_surface(k, k + 1, 2);
+    for (RuleSet rules : {RuleSet::Reliable, RuleSet::Extended}) {
+      const WeaveResult on = weave(box.surface, options_for(rules));
+      const WeaveResult off = weave(box.surface, options_for(rules, BlockRecovery::Off));
+      EXPECT_EQ(on.complex.hexes, off.complex.hexes);
+      EXPECT_EQ(on.stats.recoveries, 0U);
+      EXPECT_EQ(on.stats.recovery_trials, 0U);
+      EXPECT_TRUE(on.recoveries.empty());
+    }
+  }
+}
+
+TEST(BlockRecovery, TheTraceHoldsOnlyTheKeptTrial) {
+  // Watching the weave changes nothing: with a trace, the recovered complex is the same, and
+  // the trace has one rule event per rule applied on the kept path (abandoned trials' events
+  // are dropped).
+  const stc::QuadSurface s = test::issue11_twelve_quads();
+  for (RuleSet rules : {RuleSet::Reliable, RuleSet::Extended}) {
+    WeaveOptions traced = options_for(rules);
+    traced.trace = true;
+    const WeaveResult a = weave(s, options_for(rules));
+    const WeaveResult b = weave(s, traced);
+    EXPECT_EQ(a.complex.hexes, b.complex.hexes) << to_string(rules);
+    std::size_t pillow_hexes = 0;
+    std::size_t rule_events = 0;
+    for (const TraceEvent& e : b.trace) rule_events += e.kind == TraceEvent::Kind::Rule ? 1 : 0;
+    for (const Recovery& r : b.recoveries) pillow_hexes += r.pillowed;
+    EXPECT_GT(pillow_hexes, 0U);
+    std::size_t pillow_events = 0;
+    for (const TraceEvent& e : b.trace) pillow_events += e.rule == "pillow" ? 1 : 0;
+    EXPECT_EQ(pillow_events, b.recoveries.size()) << "one pillow event per kept recovery";
+    EXPECT_GT(rule_events, 0U);
+  }
+}
+
+TEST(BlockRecovery, NoTrialLeftIsAWeaveError) {
+  WeaveOptions o = options_for(RuleSet::Reliable);
+  o.recovery.max_trials = 0;
+  try {
+    (void)weave(test::issue11_twelve_quads(), o);
+    ADD_FAILURE() << "expected a WeaveError";
+  } catch (const WeaveError& e) {
+    EXPECT_NE(std::string(e.what()).find("block recovery"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("is blocked"), std::string::npos) << e.what();
+  }
+}
+
+TEST(BlockRecovery, NamesRoundTrip) {
+  for (BlockRecovery r : {BlockRecovery::Auto, BlockRecovery::Off})
+    EXPECT_EQ(block_recovery_from_name(to_string(r)), r);
+  EXPECT_THROW((void)block_recovery_from_name("sometimes"), InvalidInput);
+}
+
+}  // namespace
+}  // namespace stcweave::weave
