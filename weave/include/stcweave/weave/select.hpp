@@ -68,7 +68,8 @@ struct Selection {
 [[nodiscard]] Selection reliable_selection();
 
 /// The seed's Fig. 15 with the switches of `parameters`: parallel crossing (decides), then
-/// the non-convex (may relax), depth, first convex (may relax) and second convex filters;
+/// the non-convex (may relax), first convex (may relax), second convex and depth filters
+/// (depth before the convex filters, the seed's order, when `depth_after_convex` is false);
 /// among those left, the fewest faces collapsed, then the smaller weight.
 /// \cite seed sect. 4.1-4.5, 7.
 [[nodiscard]] Selection extended_selection(const ExtendedParameters& parameters);
