@@ -21,7 +21,7 @@ using Histogram = std::vector<std::size_t>;
 stc::HexComplex fan(int k, int layers) {
   stc::HexComplex c;
   const int per_layer = 2 * k + 1;
-  c.num_nodes = static_cast<std::size_t>(per_layer * (layers + 1));
+  c.num_nodes = static_cast<std::size_t>(per_layer) * static_cast<std::size_t>(layers + 1);
   const auto rim = [&](int l, int j) { return NodeId(l * per_layer + 1 + (j % (2 * k))); };
   for (int l = 0; l < layers; ++l) {
     for (int i = 0; i < k; ++i) {

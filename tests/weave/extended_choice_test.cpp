@@ -165,10 +165,13 @@ INSTANTIATE_TEST_SUITE_P(Sizes, TriangleSplitBox, ::testing::Values(2, 3));
 /// The L-block of three n-cubes (cells i, j < 2n, k < n, without the quarter i, j >= n).
 std::vector<std::array<int, 3>> lblock_of_cubes(int n) {
   std::vector<std::array<int, 3>> cells;
-  for (int i = 0; i < 2 * n; ++i)
-    for (int j = 0; j < 2 * n; ++j)
-      for (int k = 0; k < n; ++k)
+  for (int i = 0; i < 2 * n; ++i) {
+    for (int j = 0; j < 2 * n; ++j) {
+      for (int k = 0; k < n; ++k) {
         if (i < n || j < n) cells.push_back({i, j, k});
+      }
+    }
+  }
   return cells;
 }
 
