@@ -15,6 +15,7 @@
 #include "stcweave/primal/io.hpp"
 #include "stcweave/primal/mesh_data.hpp"
 #include "stcweave/primal/pipeline.hpp"
+#include "stcweave/primal/valence_stats.hpp"
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/stc/hex_stc.hpp"
 #include "stcweave/viewer/page.hpp"
@@ -328,6 +329,8 @@ int run_mesh(const MeshArgs& a) {
   report["chords"] = stc.chords.size();
   report["blind_chords"] = blind_chords;
   report["flipped_quads"] = r.orientation.flipped_quads;
+  const primal::ValenceStats valence = primal::valence_stats(r.mesh.complex);
+  report["valence"] = primal::valence_json(valence);
   report["quality"] = {{"min_scaled_jacobian", r.quality.min_scaled_jacobian},
                        {"mean_scaled_jacobian", r.quality.mean_scaled_jacobian},
                        {"inverted", r.quality.inverted},
@@ -418,6 +421,10 @@ int run_mesh(const MeshArgs& a) {
         std::cout << "; first after " << r.woven.recoveries.front().hexes_before << " hexes";
       std::cout << ")\n";
     }
+    std::cout << "valence    at most " << valence.max_hexes_at_interior_edge
+              << " hexes around an interior edge (" << valence.interior_edges_over_4
+              << " edges over 4), at most " << valence.max_hexes_at_interior_node
+              << " at an interior node (" << valence.interior_nodes_over_8 << " nodes over 8)\n";
     std::cout << "pillow     " << r.pillow.reason << "\n";
     std::cout << "valid      " << (r.validation.valid ? "yes" : "NO: " + r.validation.summary())
               << "\n";

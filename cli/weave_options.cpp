@@ -53,6 +53,14 @@ void add_weave_options(CLI::App* sub, WeaveArgs& args) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0))
       ->group(group);
+  off("second-convex-smaller-side", p.second_convex_smaller_side,
+      "the second convex filter weighs the larger side of a loop too (the seed's rule; by "
+      "default a side collapsing more faces than the other side of its loop weighs 0)");
+  sub->add_flag_function(
+         "--depth-before-convex", [&p](std::int64_t) { p.depth_after_convex = false; },
+         "extended: apply the depth filter before the convex filters (the seed's order; by "
+         "default it comes after them, see docs/extended-rules.md)")
+      ->group(group);
   off("flat-cross-precondition", p.flat_cross_precondition,
       "switch off the geometric precondition of the cross (no cross on a too flat corner)");
   sub->add_option("--max-rules", args.max_rules,
@@ -93,6 +101,8 @@ nlohmann::json weave_options_json(const weave::WeaveOptions& options) {
     j["first_convex_filter"] = p.first_convex_filter;
     j["second_convex_filter"] = p.second_convex_filter;
     j["second_convex_min_weight"] = p.second_convex_min_weight;
+    j["second_convex_smaller_side"] = p.second_convex_smaller_side;
+    j["depth_after_convex"] = p.depth_after_convex;
     j["flat_cross_precondition"] = p.flat_cross_precondition;
   }
   return j;

@@ -2,6 +2,8 @@
 /// one ranking function that runs any list.
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 
 #include "stcweave/weave/second_convex_threshold.hpp"
 #include "stcweave/weave/select.hpp"
@@ -56,6 +58,23 @@ Filter second_convex_filter() {
   return f;
 }
 
+double side_elimination_weight(const TraceCandidate& c, const TraceCandidate* other,
+                               double min_weight, bool smaller_side) {
+  if (smaller_side && other != nullptr && c.faces_collapsed > other->faces_collapsed) return 0.0;
+  const double w =
+      static_cast<double>(c.side_sharp) / static_cast<double>(std::max<std::size_t>(1, c.length));
+  return w + 1e-12 >= min_weight ? w : 0.0;
+}
+
+Filter second_convex_filter(double min_weight, bool smaller_side) {
+  Filter f = second_convex_filter();
+  f.cost_with_other = [min_weight, smaller_side](const TraceCandidate& c,
+                                                 const TraceCandidate* other) {
+    return -side_elimination_weight(c, other, min_weight, smaller_side);
+  };
+  return f;
+}
+
 Selection reliable_selection() {
   Selection s;
   s.name = "reliable";
@@ -75,13 +94,13 @@ Selection extended_selection(const ExtendedParameters& p) {
   };
   if (p.parallel_crossing) s.filters.push_back(parallel_crossing_filter());
   if (p.nonconvex_filter) s.filters.push_back(nonconvex_filter());
-  if (p.depth_filter) s.filters.push_back(depth_filter());
+  if (p.depth_filter && !p.depth_after_convex) s.filters.push_back(depth_filter());
   if (p.first_convex_filter) s.filters.push_back(first_convex_filter());
   if (p.second_convex_filter) {
-    s.filters.push_back(p.second_convex_min_weight > 0.0
-                            ? second_convex_threshold_filter(p.second_convex_min_weight)
-                            : second_convex_filter());
+    s.filters.push_back(
+        second_convex_filter(p.second_convex_min_weight, p.second_convex_smaller_side));
   }
+  if (p.depth_filter && p.depth_after_convex) s.filters.push_back(depth_filter());
   s.last = "topological";
   s.last_reason = "fewest faces collapsed";
   s.list_filters = true;
@@ -102,6 +121,22 @@ Ranking rank(const Selection& selection, std::vector<TraceCandidate> all) {
   for (const auto& c : all)
     if (!c.self_intersecting) set.push_back(c);
   if (set.empty()) set = all;
+  // The other side of each candidate's loop, looked up in every candidate (an earlier filter
+  // may have dropped it from `set`): index by loop, then side.
+  std::vector<std::array<std::int32_t, 2>> by_loop;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const auto loop = static_cast<std::size_t>(std::max<std::int32_t>(0, all[i].loop));
+    if (all[i].loop < 0 || all[i].side < 0 || all[i].side > 1) continue;
+    if (by_loop.size() <= loop) by_loop.resize(loop + 1, {-1, -1});
+    by_loop[loop][static_cast<std::size_t>(all[i].side)] = static_cast<std::int32_t>(i);
+  }
+  const auto other_side = [&](const TraceCandidate& c) -> const TraceCandidate* {
+    if (c.loop < 0 || c.side < 0 || c.side > 1) return nullptr;
+    const auto loop = static_cast<std::size_t>(c.loop);
+    if (loop >= by_loop.size()) return nullptr;
+    const std::int32_t i = by_loop[loop][static_cast<std::size_t>(1 - c.side)];
+    return i < 0 ? nullptr : &all[static_cast<std::size_t>(i)];
+  };
   const auto note = [&](const std::string& entry) {
     if (selection.list_filters) out.filters.push_back(entry);
   };
@@ -110,15 +145,18 @@ Ranking rank(const Selection& selection, std::vector<TraceCandidate> all) {
     const std::size_t before = set.size();
     std::vector<TraceCandidate> kept;
     if (filter.kind == Filter::Kind::Least) {
+      const auto cost = [&](const TraceCandidate& c) {
+        return filter.cost_with_other ? filter.cost_with_other(c, other_side(c)) : filter.cost(c);
+      };
       double least = 0.0;
       bool first = true;
       for (const auto& c : set) {
-        const double x = filter.cost(c);
+        const double x = cost(c);
         if (first || x < least) least = x;
         first = false;
       }
       for (const auto& c : set)
-        if (filter.cost(c) <= least + filter.slack) kept.push_back(c);
+        if (cost(c) <= least + filter.slack) kept.push_back(c);
     } else {
       for (const auto& c : set)
         if (filter.keep(c)) kept.push_back(c);

@@ -36,7 +36,10 @@ struct Filter {
   Kind kind = Kind::Keep;
   std::function<bool(const TraceCandidate&)> keep;    ///< Keep, Decide
   std::function<double(const TraceCandidate&)> cost;  ///< Least
-  double slack = 1e-12;                               ///< Least
+  /// Least: used instead of `cost` when set; also reads the candidate for the other side of
+  /// the same loop (nullptr when that one is not among the candidates ranked).
+  std::function<double(const TraceCandidate&, const TraceCandidate*)> cost_with_other;
+  double slack = 1e-12;  ///< Least
   /// When it would leave no candidate it is skipped for this selection (traced "relaxed").
   bool may_relax = false;
   /// Decide: the reason traced, given the candidates it kept.
@@ -65,7 +68,8 @@ struct Selection {
 [[nodiscard]] Selection reliable_selection();
 
 /// The seed's Fig. 15 with the switches of `parameters`: parallel crossing (decides), then
-/// the non-convex (may relax), depth, first convex (may relax) and second convex filters;
+/// the non-convex (may relax), first convex (may relax), second convex and depth filters
+/// (depth before the convex filters, the seed's order, when `depth_after_convex` is false);
 /// among those left, the fewest faces collapsed, then the smaller weight.
 /// \cite seed sect. 4.1-4.5, 7.
 [[nodiscard]] Selection extended_selection(const ExtendedParameters& parameters);
@@ -79,6 +83,17 @@ struct Selection {
 [[nodiscard]] Filter depth_filter();              ///< sect. 4.1: least depth
 [[nodiscard]] Filter first_convex_filter();       ///< sect. 4.2: crosses a sharp edge
 [[nodiscard]] Filter second_convex_filter();      ///< sect. 4.3: highest side elimination weight
+
+/// The side elimination weight of `c` (sharp convex side edges / loop length, seed sect.
+/// 4.3), 0 when it is below `min_weight`, or, with `smaller_side`, when `c`'s side collapses
+/// more faces than `other`, the other side of the same loop (nullptr: not known, no test).
+[[nodiscard]] double side_elimination_weight(const TraceCandidate& c, const TraceCandidate* other,
+                                             double min_weight, bool smaller_side);
+
+/// The second convex filter with our two conditions (`side_elimination_weight`): a weight
+/// below `min_weight` counts as 0; with `smaller_side`, so does the weight of the larger side
+/// of a loop. Traced as "second_convex". With (0, false) it ranks as `second_convex_filter`.
+[[nodiscard]] Filter second_convex_filter(double min_weight, bool smaller_side);
 
 /// The outcome of ranking the candidates of one selection.
 struct Ranking {

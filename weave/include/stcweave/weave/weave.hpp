@@ -79,6 +79,19 @@ struct ExtendedParameters {
   /// triangle-split cylinders but breaks the structured answer of an L-block made of three
   /// transfinite blocks (docs/extended-rules.md has the figures).
   double second_convex_min_weight = 0.0;
+  /// Second convex rule, our condition (docs/extended-rules.md, "Second convex: the smaller
+  /// side"): a side's elimination weight counts only when that side collapses no more faces
+  /// than the other side of the same loop; otherwise it weighs 0. The sharp edges along a
+  /// loop that circles one vertex of a triangle-split surface lie on the side that is the rest
+  /// of the front, and the seed's rule would collapse it. Default true; false is the seed's
+  /// rule (CLI `--second-convex-any-side`).
+  bool second_convex_smaller_side = true;
+  /// Order of the filters (docs/extended-rules.md, "Depth after the convex filters"): true
+  /// (default) applies the depth filter after the first and second convex filters, false in
+  /// the seed's order (before them, Fig. 15; CLI `--depth-before-convex`). Measured, the
+  /// seed's order peels the front evenly, which bends the sheets of a structured L-block
+  /// around its corners (`lblock_tf_medium`: 11,743 hexes against the structured 6,591).
+  bool depth_after_convex = true;
   /// Geometric precondition of the cross (sect. 2.2, RWW): refuse a cross at a corner
   /// where more than one of the three edges is flatter than `little_sharp`. Lifted for a
   /// shrink in which every node would otherwise be blocked.
