@@ -31,6 +31,9 @@ struct CutOptions {
   /// Cut surfaces whose loops are checked per solid (over every handle's disc choices, in a
   /// depth-first search) before giving up.
   std::size_t max_loop_checks = 2000;
+  /// When the weave of a cut ball blocks, it is tried once more with up to this many one-face
+  /// pillows at blocked nodes (`weave::WeaveOptions::recovery_pillows`); 0: no second try.
+  std::size_t recovery_pillows = 16;
 };
 
 /// One handle cut: where, with which disc, after how many attempts.
@@ -38,6 +41,9 @@ struct HandleCut {
   std::vector<NodeId> cycle;  ///< surface node ids (of the woven surface)
   int grid_a = 0;             ///< the disc is a grid_a x grid_b grid of quads
   int grid_b = 0;
+  /// The disc, in words: "3x3" (a grid), "3x3 O-grid", "loop-following (14 quads)" (a chord
+  /// disc pairing the crossings of each loop, grid_a = grid_b = 0), "annulus 1x4" (a cavity).
+  std::string disc;
   std::size_t attempts = 0;  ///< disc choices tried, loop-checked or woven (the last was kept)
 };
 
@@ -48,6 +54,9 @@ struct SolidsReport {
   double cut_seconds = 0.0;    ///< building discs and cut surfaces
   double weave_seconds = 0.0;  ///< the weaves of the cut balls (including discarded ones)
   double glue_seconds = 0.0;   ///< gluing, renumbering, checking the glued complexes
+  /// Solids whose kept weave was not the first of the second pass's chain (recovery pillows
+  /// or the reliable rule set after the weave with the given options blocked).
+  std::size_t relaxed_weaves = 0;
 };
 
 /// Weaves every solid of `mesh` on its own, cutting its handles first, and combines them:
