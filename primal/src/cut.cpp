@@ -110,10 +110,12 @@ std::vector<LoopId> crossing_loops(const stc::QuadSurface& surface, const stc::L
                                    const std::vector<NodeId>& cycle) {
   const std::size_t len = cycle.size();
   std::map<std::pair<NodeId, NodeId>, std::pair<std::size_t, int>> side_of;
-  for (std::size_t q = 0; q < surface.num_quads(); ++q)
-    for (int i = 0; i < 4; ++i)
+  for (std::size_t q = 0; q < surface.num_quads(); ++q) {
+    for (int i = 0; i < 4; ++i) {
       side_of[{surface.quads[q][static_cast<std::size_t>(i)],
                surface.quads[q][static_cast<std::size_t>((i + 1) % 4)]}] = {q, i};
+    }
+  }
   std::vector<LoopId> out(len, LoopId::invalid());
   for (std::size_t p = 0; p < len; ++p) {
     const auto it = side_of.find({cycle[p], cycle[(p + 1) % len]});
@@ -811,9 +813,9 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
     // weaving and gluing; within a budget of loop checks and of weaves.
     // Two passes over the disc choices. First the grids, woven with `options` alone (what
     // the cut did before chord discs). Then the loop-following chord discs first, and a
-    // blocked weave (or an invalid glue) tried again with one-face recovery pillows and with
-    // the reliable rule set: the two copies of a disc coincide, and the extended rules often
-    // block beside them (docs/topology.md has the figures).
+    // blocked weave (or an invalid glue) tried again with the reliable rule set, then each
+    // with one-face recovery pillows: the two copies of a disc coincide, and the extended rules
+    // often block beside them (docs/topology.md has the figures).
     struct Pass {
       bool follow_first = false;
       std::vector<weave::WeaveOptions> chain;
@@ -822,11 +824,15 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
     passes[0].chain = {options};
     passes[1].follow_first = true;
     passes[1].chain = {options};
-    for (const weave::RuleSet rules : {options.rules, weave::RuleSet::Reliable}) {
+    if (options.rules != weave::RuleSet::Reliable) {
       weave::WeaveOptions o = options;
-      o.rules = rules;
-      if (rules != options.rules) passes[1].chain.push_back(o);
-      if (cut_options.recovery_pillows > 0 && o.recovery_pillows == 0) {
+      o.rules = weave::RuleSet::Reliable;
+      passes[1].chain.push_back(o);
+    }
+    if (cut_options.recovery_pillows > 0 && options.recovery_pillows == 0) {
+      const std::size_t plain = passes[1].chain.size();
+      for (std::size_t i = 0; i < plain; ++i) {
+        weave::WeaveOptions o = passes[1].chain[i];
         o.recovery_pillows = cut_options.recovery_pillows;
         passes[1].chain.push_back(o);
       }

@@ -103,6 +103,26 @@ void grow_tree_avoiding(const Graph& g, std::size_t root, const std::vector<char
   }
 }
 
+/// Whether the segment a-b crosses the triangle (p, q, r) strictly inside both.
+bool segment_hits_triangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                           const Eigen::Vector3d& p, const Eigen::Vector3d& q,
+                           const Eigen::Vector3d& r) {
+  const Eigen::Vector3d dir = b - a;
+  const Eigen::Vector3d e1 = q - p;
+  const Eigen::Vector3d e2 = r - p;
+  const Eigen::Vector3d h = dir.cross(e2);
+  const double det = e1.dot(h);
+  if (std::abs(det) < 1e-300) return false;
+  const Eigen::Vector3d t = a - p;
+  const double u = t.dot(h) / det;
+  if (u <= 0.0 || u >= 1.0) return false;
+  const Eigen::Vector3d k = t.cross(e1);
+  const double w = dir.dot(k) / det;
+  if (w <= 0.0 || u + w >= 1.0) return false;
+  const double s = e2.dot(k) / det;
+  return s > 0.0 && s < 1.0;
+}
+
 Tree empty_tree(std::size_t n) {
   Tree t;
   t.parent.assign(n, kNone);
@@ -445,6 +465,41 @@ HandleDiagnosis diagnose_handles(const SurfaceMesh& mesh, const HandleOptions& o
                              [&](std::size_t v) { return unpointed[v] != 0; });
         });
     if (!meets_unpointed || !any_unpointed) break;
+    // Going round nodes of unpointed cone is sound only where the surface is embedded: a
+    // quad at such a node pierced by an edge of the surface (a fold through the solid), or an
+    // edge at it piercing a quad, leaves it undecided.
+    const auto pierces = [&](std::size_t a, std::size_t b, const stc::Quad& q) {
+      for (NodeId x : q)
+        if (x.index() == a || x.index() == b) return false;
+      // Pierced whichever diagonal splits the quad (a non-planar quad is not misread).
+      const auto hits = [&](int d) {
+        const auto c = [&](int k) { return pt(q[static_cast<std::size_t>((k + d) % 4)].index()); };
+        return segment_hits_triangle(pt(a), pt(b), c(0), c(1), c(2)) ||
+               segment_hits_triangle(pt(a), pt(b), c(0), c(2), c(3));
+      };
+      return hits(0) && hits(1);
+    };
+    for (std::size_t v = 0; v < n; ++v) {
+      if (unpointed[v] == 0) continue;
+      for (const stc::Quad& q : surface.quads) {
+        const bool at_v = std::find(q.begin(), q.end(), NodeId(v)) != q.end();
+        // A quad at v against every edge; any other quad against the edges at v.
+        const std::size_t count = at_v ? num_edges : g.adj[v].size();
+        for (std::size_t i = 0; i < count; ++i) {
+          const std::size_t e = at_v ? i : g.adj[v][i].second;
+          const std::size_t a = topo.edges[e].a.index();
+          const std::size_t b = topo.edges[e].b.index();
+          if (!pierces(a, b, q)) continue;
+          out.undecided_reason = "the quads around node " + NodeId(v).str() +
+                                 " face too many ways and the surface is not embedded there "
+                                 "(edge " +
+                                 NodeId(a).str() + "-" + NodeId(b).str() + " pierces quad " +
+                                 q[0].str() + "-" + q[1].str() + "-" + q[2].str() + "-" +
+                                 q[3].str() + ")";
+          return out;
+        }
+      }
+    }
   }
 
   for (const auto& cycle : generators) {

@@ -17,7 +17,9 @@
 namespace stcweave {
 namespace {
 
-TEST(CorpusGenus2, PipeHelixHandleIsDecidedDespiteAnUnpointedNode) {
+TEST(CorpusGenus2, PipeHelixIsUndecidedBecauseItsSurfaceIsNotEmbedded) {
+  // Its generators meet a node of unpointed normal cone (n174); going round it is refused
+  // because an edge pierces a quad there: the undecided reason says so.
   const auto path = test::shared_data() / "real/polycube-nightmares-quad/pipe_helix.msh";
   if (!std::filesystem::exists(path)) {
     if (test::shared_data_required()) FAIL() << path << " missing";
@@ -25,12 +27,10 @@ TEST(CorpusGenus2, PipeHelixHandleIsDecidedDespiteAnUnpointedNode) {
   }
   const primal::SurfaceDiagnosis d = primal::diagnose(primal::read_mesh(path));
   ASSERT_TRUE(d.handles);
-  ASSERT_TRUE(d.handles->decided) << d.handles->undecided_reason;
+  EXPECT_FALSE(d.handles->decided);
+  EXPECT_NE(d.handles->undecided_reason.find("not embedded there"), std::string::npos)
+      << d.handles->undecided_reason;
   EXPECT_EQ(d.handles->genus, 1);
-  ASSERT_EQ(d.handles->handles.size(), 1u);
-  EXPECT_TRUE(d.handles->all_even());
-  // Its loops cross themselves: meshing it stays refused (issue 13's case with handles).
-  EXPECT_GT(d.self_intersecting_loops.value_or(0), 0u);
 }
 
 TEST(CorpusGenus2, FertilityIsCutAlongLoopFollowingDiscsIntoAValidComplex) {
