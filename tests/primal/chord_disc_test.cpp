@@ -35,10 +35,12 @@ std::vector<std::size_t> pairing(std::size_t len,
 std::vector<std::size_t> chords_of(const Disc& disc, std::size_t len) {
   // Quad sides by their (ordered) node pair.
   std::map<std::pair<std::size_t, std::size_t>, std::pair<std::size_t, int>> side;
-  for (std::size_t q = 0; q < disc.quads.size(); ++q)
-    for (int i = 0; i < 4; ++i)
+  for (std::size_t q = 0; q < disc.quads.size(); ++q) {
+    for (int i = 0; i < 4; ++i) {
       side[{disc.quads[q][static_cast<std::size_t>(i)],
             disc.quads[q][static_cast<std::size_t>((i + 1) % 4)]}] = {q, i};
+    }
+  }
   std::vector<std::size_t> node_at(len);
   for (std::size_t d = 0; d < disc.walk.size(); ++d)
     if (disc.walk[d]) node_at[*disc.walk[d]] = d;
