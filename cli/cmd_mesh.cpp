@@ -394,7 +394,7 @@ int run_mesh(const MeshArgs& a) {
     nlohmann::json cuts = nlohmann::json::array();
     for (const primal::HandleCut& c : r.solids.cuts) {
       cuts.push_back({{"cycle_edges", c.cycle.size()},
-                      {"disc", std::to_string(c.grid_a) + "x" + std::to_string(c.grid_b)},
+                      {"disc", c.disc},
                       {"attempts", c.attempts}});
     }
     report["solids"] = {{"solids", r.solids.solids},

@@ -9,6 +9,7 @@
 #include <optional>
 #include <tuple>
 
+#include "chord_disc.hpp"
 #include "stcweave/primal/edge_angles.hpp"
 #include "stcweave/primal/handles.hpp"
 #include "stcweave/stc/errors.hpp"
@@ -30,7 +31,13 @@ struct DiscChoice {
   std::size_t start = 0;
   double score = 0.0;
   bool ring = false;  ///< an O-grid: the grid is an inner block ringed by one layer of quads
+  /// A chord disc (`chord_disc`) when not empty: boundary edge p paired with `partner[p]`
+  /// (edge p runs from cycle position p to p + 1; `a`, `b`, `start` unused).
+  std::vector<std::size_t> partner;
+  std::size_t quads = 0;  ///< of a chord disc
 };
+
+constexpr std::size_t kNoPartner = static_cast<std::size_t>(-1);
 
 /// Inner block of an O-grid disc: the grid's transfinite positions scaled by this factor
 /// about the cycle's centroid.
@@ -56,7 +63,10 @@ std::vector<DiscChoice> disc_choices(const Points& points, const std::vector<Nod
     if (a > b) break;  // (a, b) and (b, a) differ by the start only
     for (std::size_t s = 0; s < len; ++s) {
       // a x b and b x a starting at s are the same corners shifted: enumerate both starts.
-      DiscChoice c{a, b, s, 0.0};
+      DiscChoice c;
+      c.a = a;
+      c.b = b;
+      c.start = s;
       const std::size_t ua = static_cast<std::size_t>(a);
       const std::size_t ub = static_cast<std::size_t>(b);
       c.score = turn[s % len] + turn[(s + ua) % len] + turn[(s + ua + ub) % len] +
@@ -95,6 +105,97 @@ std::vector<DiscChoice> disc_choices(const Points& points, const std::vector<Nod
   return unique;
 }
 
+/// Per edge p of `cycle` (from cycle[p] to cycle[p + 1]), the loop of `loops` crossing it.
+std::vector<LoopId> crossing_loops(const stc::QuadSurface& surface, const stc::LoopSet& loops,
+                                   const std::vector<NodeId>& cycle) {
+  const std::size_t len = cycle.size();
+  std::map<std::pair<NodeId, NodeId>, std::pair<std::size_t, int>> side_of;
+  for (std::size_t q = 0; q < surface.num_quads(); ++q) {
+    for (int i = 0; i < 4; ++i) {
+      side_of[{surface.quads[q][static_cast<std::size_t>(i)],
+               surface.quads[q][static_cast<std::size_t>((i + 1) % 4)]}] = {q, i};
+    }
+  }
+  std::vector<LoopId> out(len, LoopId::invalid());
+  for (std::size_t p = 0; p < len; ++p) {
+    const auto it = side_of.find({cycle[p], cycle[(p + 1) % len]});
+    if (it == side_of.end()) continue;
+    out[p] = loops.quad_loops[it->second.first][static_cast<std::size_t>(it->second.second % 2)];
+  }
+  return out;
+}
+
+/// Pairings of the cycle's edges that follow the loops crossing it, so that a loop's pieces
+/// on the two sides of the cut close up across the disc instead of merging with a loop they
+/// cross (the merged loop would cross itself). A depth-first search over perfect matchings:
+/// the lowest unpaired edge is paired with, in order, an edge crossed by the same loop, then
+/// one crossed by a loop that does not cross its own loop, nearest along the cycle first;
+/// never two adjacent edges (that chord would cross no other: no disc). At most `wanted`
+/// pairings, fewest disc quads first.
+std::vector<DiscChoice> loop_following_choices(const std::vector<LoopId>& crossing,
+                                               const stc::LoopSet& loops, std::size_t wanted = 4) {
+  const std::size_t len = crossing.size();
+  if (len < 4 ||
+      std::any_of(crossing.begin(), crossing.end(), [](LoopId l) { return !l.is_valid(); }))
+    return {};
+  const auto cross = [&](LoopId x, LoopId y) {
+    const stc::Loop& lx = loops.loops[x.index()];
+    return std::any_of(lx.crossings.begin(), lx.crossings.end(),
+                       [&](const stc::LoopCrossing& c) { return c.other == y; });
+  };
+  const auto adjacent = [&](std::size_t x, std::size_t y) {
+    return (x + 1) % len == y || (y + 1) % len == x;
+  };
+  std::vector<DiscChoice> out;
+  std::vector<std::size_t> partner(len, kNoPartner);
+  std::size_t budget = 20000;
+  const std::function<void()> search = [&]() {
+    if (out.size() >= wanted || budget == 0) return;
+    --budget;
+    const auto first = std::find(partner.begin(), partner.end(), kNoPartner);
+    if (first == partner.end()) {
+      // Realisable: every chord crosses another, and the arrangement makes a disc.
+      if (!chord_disc(std::vector<Eigen::RowVector3d>(len, Eigen::RowVector3d::Zero()), partner))
+        return;
+      DiscChoice c;
+      c.partner = partner;
+      c.quads = chord_crossings(partner);
+      out.push_back(std::move(c));
+      return;
+    }
+    const std::size_t p = static_cast<std::size_t>(first - partner.begin());
+    std::vector<std::tuple<int, std::size_t, std::size_t>> options;  // (cost, distance, q)
+    for (std::size_t q = p + 1; q < len; ++q) {
+      if (partner[q] != kNoPartner || adjacent(p, q)) continue;
+      int cost = 0;
+      if (crossing[q] != crossing[p]) {
+        if (cross(crossing[p], crossing[q])) continue;
+        cost = 1;
+      }
+      options.emplace_back(cost, std::min(q - p, len - (q - p)), q);
+    }
+    std::sort(options.begin(), options.end());
+    for (const auto& [cost, distance, q] : options) {
+      partner[p] = q;
+      partner[q] = p;
+      search();
+      partner[p] = kNoPartner;
+      partner[q] = kNoPartner;
+      if (out.size() >= wanted || budget == 0) return;
+    }
+  };
+  search();
+  std::stable_sort(out.begin(), out.end(),
+                   [](const DiscChoice& x, const DiscChoice& y) { return x.quads < y.quads; });
+  return out;
+}
+
+/// "3x3", "3x3 O-grid" or "loop-following (14 quads)".
+std::string disc_name(const DiscChoice& c) {
+  if (!c.partner.empty()) return "loop-following (" + std::to_string(c.quads) + " quads)";
+  return std::to_string(c.a) + "x" + std::to_string(c.b) + (c.ring ? " O-grid" : "");
+}
+
 /// A surface being cut: quads and points over its own node ids, and per node the id of the
 /// final mesh node it stands for.
 struct CutSurface {
@@ -102,8 +203,6 @@ struct CutSurface {
   std::vector<NodeId> final_id;
 };
 
-/// The cut of `s` along `cycle` (node ids of `s`) with the disc `choice`; new disc interior
-/// nodes get final ids from `next_final` on.
 /// Per node of `cycle` (a simple cycle of `surface`'s edges), the quads on its + side: the
 /// quad traversing the outgoing cycle edge forward, and the fan from it round the node to the
 /// incoming cycle edge.
@@ -155,12 +254,9 @@ std::vector<std::vector<std::size_t>> plus_fans(const stc::QuadSurface& surface,
   return plus;
 }
 
-CutSurface cut_along(const CutSurface& s, const std::vector<NodeId>& cycle,
-                     const DiscChoice& choice, std::size_t* next_final) {
-  const stc::QuadSurface& surface = s.mesh.surface;
+/// The grid (or O-grid) disc of `choice`, its walk positions counted from `choice.start`.
+Disc grid_disc(const CutSurface& s, const std::vector<NodeId>& cycle, const DiscChoice& choice) {
   const std::size_t len = cycle.size();
-  const std::size_t n = surface.num_nodes;
-  const std::vector<std::vector<std::size_t>> plus = plus_fans(surface, cycle);
   // The disc over its own ids: a grid (a+1) x (b+1), node (i, j) at i + (a+1) j, whose
   // boundary walk (0,0) -> (a,0) -> (a,b) -> (0,b) -> (0,0) follows the cycle from `start`;
   // with a ring, that grid is an inner block and one layer of quads joins its boundary to the
@@ -191,18 +287,16 @@ CutSurface cut_along(const CutSurface& s, const std::vector<NodeId>& cycle,
                              (1 - u) * w * bp(0, b) + u * w * bp(a, b));
     }
   }
-  // Disc nodes: boundary ones are walk positions, the others interior (numbered in order).
-  std::vector<std::optional<std::size_t>> disc_walk;
-  std::vector<Eigen::RowVector3d> disc_pos;
-  std::vector<std::array<std::size_t, 4>> disc_quads;
+  // Disc nodes: boundary ones are walk positions, the others interior.
+  Disc disc;
   std::vector<std::size_t> grid_disc(grid);
   if (!choice.ring) {
     for (std::size_t g = 0; g < grid; ++g) {
-      grid_disc[g] = disc_walk.size();
-      disc_walk.push_back(walk_of[g] == static_cast<std::size_t>(-1)
+      grid_disc[g] = disc.walk.size();
+      disc.walk.push_back(walk_of[g] == static_cast<std::size_t>(-1)
                               ? std::nullopt
                               : std::optional<std::size_t>(walk_of[g]));
-      disc_pos.push_back(grid_pos[g]);
+      disc.positions.push_back(grid_pos[g]);
     }
   } else {
     Eigen::RowVector3d centre = Eigen::RowVector3d::Zero();
@@ -210,30 +304,44 @@ CutSurface cut_along(const CutSurface& s, const std::vector<NodeId>& cycle,
     centre /= static_cast<double>(len);
     std::vector<std::size_t> rim(len);
     for (std::size_t p = 0; p < len; ++p) {
-      rim[p] = disc_walk.size();
-      disc_walk.emplace_back(p);
-      disc_pos.push_back(grid_pos[walk_node[p]]);
+      rim[p] = disc.walk.size();
+      disc.walk.emplace_back(p);
+      disc.positions.push_back(grid_pos[walk_node[p]]);
     }
     for (std::size_t g = 0; g < grid; ++g) {
-      grid_disc[g] = disc_walk.size();
-      disc_walk.emplace_back(std::nullopt);
-      disc_pos.push_back(centre + kRingShrink * (grid_pos[g] - centre));
+      grid_disc[g] = disc.walk.size();
+      disc.walk.emplace_back(std::nullopt);
+      disc.positions.push_back(centre + kRingShrink * (grid_pos[g] - centre));
     }
     for (std::size_t p = 0; p < len; ++p) {
       const std::size_t p1 = (p + 1) % len;
-      disc_quads.push_back({rim[p], rim[p1], grid_disc[walk_node[p1]], grid_disc[walk_node[p]]});
+      disc.quads.push_back({rim[p], rim[p1], grid_disc[walk_node[p1]], grid_disc[walk_node[p]]});
     }
   }
   for (std::size_t j = 0; j < b; ++j) {
     for (std::size_t i = 0; i < a; ++i) {
-      disc_quads.push_back({grid_disc[gid(i, j)], grid_disc[gid(i + 1, j)],
+      disc.quads.push_back({grid_disc[gid(i, j)], grid_disc[gid(i + 1, j)],
                             grid_disc[gid(i + 1, j + 1)], grid_disc[gid(i, j + 1)]});
     }
   }
-  std::vector<std::size_t> interior_index(disc_walk.size(), 0);
+  return disc;
+}
+
+/// The cut of `s` along `cycle` (node ids of `s`, a simple cycle) with `disc`, whose walk
+/// position p stands for cycle position (start + p) mod L: the cycle's nodes are duplicated
+/// (the quads on the + side take the copies) and the disc added once facing each side. New
+/// disc interior nodes get final ids from `*next_final` on.
+CutSurface cut_along(const CutSurface& s, const std::vector<NodeId>& cycle, std::size_t start,
+                     const Disc& disc, std::size_t* next_final) {
+  const stc::QuadSurface& surface = s.mesh.surface;
+  const std::size_t len = cycle.size();
+  const std::size_t n = surface.num_nodes;
+  const std::vector<std::vector<std::size_t>> plus = plus_fans(surface, cycle);
+  const auto cycle_at = [&](std::size_t p) { return (start + p) % len; };
+  std::vector<std::size_t> interior_index(disc.walk.size(), 0);
   std::size_t interior = 0;
-  for (std::size_t d = 0; d < disc_walk.size(); ++d)
-    if (!disc_walk[d]) interior_index[d] = interior++;
+  for (std::size_t d = 0; d < disc.walk.size(); ++d)
+    if (!disc.walk[d]) interior_index[d] = interior++;
 
   CutSurface out;
   const std::size_t n_new = n + len + 2 * interior;
@@ -257,24 +365,24 @@ CutSurface cut_along(const CutSurface& s, const std::vector<NodeId>& cycle,
   // Minus copy: the cycle's own ids; plus copy: n + k; interior: minus at n + len + t, plus
   // at n + len + interior + t, both standing for one new final node.
   const auto node_minus = [&](std::size_t d) {
-    if (disc_walk[d]) return cycle[cycle_at(*disc_walk[d])];
+    if (disc.walk[d]) return cycle[cycle_at(*disc.walk[d])];
     return NodeId(n + len + interior_index[d]);
   };
   const auto node_plus = [&](std::size_t d) {
-    if (disc_walk[d]) return NodeId(n + cycle_at(*disc_walk[d]));
+    if (disc.walk[d]) return NodeId(n + cycle_at(*disc.walk[d]));
     return NodeId(n + len + interior + interior_index[d]);
   };
-  for (std::size_t d = 0; d < disc_walk.size(); ++d) {
-    if (disc_walk[d]) continue;
+  for (std::size_t d = 0; d < disc.walk.size(); ++d) {
+    if (disc.walk[d]) continue;
     const NodeId m = node_minus(d);
     const NodeId pl = node_plus(d);
-    out.mesh.points.row(m.value()) = disc_pos[d];
-    out.mesh.points.row(pl.value()) = disc_pos[d];
+    out.mesh.points.row(m.value()) = disc.positions[d];
+    out.mesh.points.row(pl.value()) = disc.positions[d];
     const NodeId f((*next_final)++);
     out.final_id[m.index()] = f;
     out.final_id[pl.index()] = f;
   }
-  for (const auto& q : disc_quads) {
+  for (const auto& q : disc.quads) {
     // Minus copy: traverses the cycle forward; plus copy: reversed.
     out.mesh.surface.quads.push_back(
         {node_minus(q[0]), node_minus(q[1]), node_minus(q[2]), node_minus(q[3])});
@@ -363,6 +471,32 @@ void add_stats(weave::WeaveStats& sum, const weave::WeaveStats& s) {
   sum.parallel_merges += s.parallel_merges;
   sum.nonconvexity_seams += s.nonconvexity_seams;
   sum.rolled_back_shrinks += s.rolled_back_shrinks;
+}
+
+/// The glued complex of `ball` (its hexes over final ids, `num_nodes` final nodes) checked by
+/// `stc::validate_hex_complex`: empty when valid, else the summary of what it breaks.
+std::string glue_problem(const BallWeave& ball, std::size_t num_nodes, SolidsReport& rep) {
+  const auto t = std::chrono::steady_clock::now();
+  stc::HexComplex glued;
+  glued.hexes = ball.hexes;
+  glued.num_nodes = num_nodes;
+  const stc::ValidationReport v = stc::validate_hex_complex(glued);
+  rep.glue_seconds += seconds_since(t);
+  return v.valid ? std::string() : v.summary();
+}
+
+/// Appends a woven (and glued) ball to `result`: hexes, their shrink and rule records, the
+/// weave's statistics and its trace (hex ids shifted).
+void append_ball(weave::WeaveResult& result, const BallWeave& ball) {
+  const std::size_t hex_offset = result.complex.hexes.size();
+  for (const stc::Hex& h : ball.hexes) result.complex.hexes.push_back(h);
+  for (std::int32_t sh : ball.woven.hex_shrink) result.hex_shrink.push_back(sh);
+  for (const std::string& r : ball.woven.hex_rule) result.hex_rule.push_back(r);
+  add_stats(result.stats, ball.woven.stats);
+  for (weave::TraceEvent e : ball.woven.trace) {
+    if (e.hex.is_valid()) e.hex = HexId(e.hex.index() + hex_offset);
+    result.trace.push_back(std::move(e));
+  }
 }
 
 /// The cut of `s` along an annulus of one layer of quads between two node-disjoint cycles of
@@ -594,6 +728,7 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
         for (NodeId v : inner) hc.cycle.push_back(solid.final_id[v.index()]);
         hc.grid_a = 1;
         hc.grid_b = 4;  // an annulus of 1 x 4 quads
+        hc.disc = "annulus 1x4";
         hc.attempts = 1;
         rep.cuts.push_back(hc);
       }
@@ -605,31 +740,17 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
                           ": cutting its cavities off gives a surface with a self-intersecting "
                           "loop: not supported yet");
       }
-      auto t1 = std::chrono::steady_clock::now();
-      BallWeave w = weave_ball(current, options, next_final);
+      const auto t1 = std::chrono::steady_clock::now();
+      const BallWeave w = weave_ball(current, options, next_final);
       rep.weave_seconds += seconds_since(t1);
-      t1 = std::chrono::steady_clock::now();
-      stc::HexComplex glued;
-      glued.hexes = w.hexes;
-      glued.num_nodes = next_final + w.interior;
-      const stc::ValidationReport v = stc::validate_hex_complex(glued);
-      rep.glue_seconds += seconds_since(t1);
-      if (!v.valid) {
+      const std::string problem = glue_problem(w, next_final + w.interior, rep);
+      if (!problem.empty()) {
         throw Unsupported(ComponentId(c).str() +
-                          ": the cavity cut woven and glued back breaks "
-                          "an invariant (" +
-                          v.summary().substr(0, 200) + ")");
+                          ": the cavity cut woven and glued back breaks an invariant (" +
+                          problem.substr(0, 200) + ")");
       }
       next_final += w.interior;
-      const std::size_t hex_offset = result.complex.hexes.size();
-      for (const stc::Hex& h : w.hexes) result.complex.hexes.push_back(h);
-      for (std::int32_t sh : w.woven.hex_shrink) result.hex_shrink.push_back(sh);
-      for (const std::string& r : w.woven.hex_rule) result.hex_rule.push_back(r);
-      add_stats(result.stats, w.woven.stats);
-      for (weave::TraceEvent e : w.woven.trace) {
-        if (e.hex.is_valid()) e.hex = HexId(e.hex.index() + hex_offset);
-        result.trace.push_back(std::move(e));
-      }
+      append_ball(result, w);
       continue;
     }
 
@@ -690,6 +811,34 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
     // valid through the earlier cuts): a depth-first search over the disc choices of each
     // cut, pruned by loop cleanliness after every cut, where the last cut is checked by
     // weaving and gluing; within a budget of loop checks and of weaves.
+    // Two passes over the disc choices. First the grids, woven with `options` alone (what
+    // the cut did before chord discs). Then the loop-following chord discs first, and a
+    // blocked weave (or an invalid glue) tried again with the reliable rule set, then each
+    // with one-face recovery pillows: the two copies of a disc coincide, and the extended rules
+    // often block beside them (docs/topology.md has the figures).
+    struct Pass {
+      bool follow_first = false;
+      std::vector<weave::WeaveOptions> chain;
+    };
+    std::vector<Pass> passes(2);
+    passes[0].chain = {options};
+    passes[1].follow_first = true;
+    passes[1].chain = {options};
+    if (options.rules != weave::RuleSet::Reliable) {
+      weave::WeaveOptions o = options;
+      o.rules = weave::RuleSet::Reliable;
+      passes[1].chain.push_back(o);
+    }
+    if (cut_options.recovery_pillows > 0 && options.recovery_pillows == 0) {
+      const std::size_t plain = passes[1].chain.size();
+      for (std::size_t i = 0; i < plain; ++i) {
+        weave::WeaveOptions o = passes[1].chain[i];
+        o.recovery_pillows = cut_options.recovery_pillows;
+        passes[1].chain.push_back(o);
+      }
+    }
+    bool follow_first = false;
+    const std::vector<weave::WeaveOptions>* chain = &passes[0].chain;
     std::optional<BallWeave> ball;
     std::vector<HandleCut> cuts(cycles.size());
     std::size_t loop_checks = 0;
@@ -698,8 +847,7 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
     std::string failures;
     const auto note = [&](const DiscChoice& choice, std::size_t k, const std::string& why) {
       if (failures.size() > 600) return;
-      failures += "; cut " + std::to_string(k + 1) + ", " + std::to_string(choice.a) + "x" +
-                  std::to_string(choice.b) + (choice.ring ? " O-grid" : "") +
+      failures += "; cut " + std::to_string(k + 1) + ", " + disc_name(choice) +
                   " disc from position " + std::to_string(choice.start) + ": " + why;
     };
     const std::function<bool(const CutSurface&, std::size_t, std::size_t)> search =
@@ -707,7 +855,22 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
       if (weaves >= cut_options.max_disc_attempts || loop_checks >= cut_options.max_loop_checks)
         return false;
       auto t1 = std::chrono::steady_clock::now();
-      const std::vector<DiscChoice> choices = disc_choices(current.mesh.points, cycles[k]);
+      std::vector<DiscChoice> choices = disc_choices(current.mesh.points, cycles[k]);
+      {
+        // Loop-following chord discs after the plain grids, before the O-grids.
+        const stc::LoopSet before =
+            stc::find_loops(current.mesh.surface, stc::FindLoopsOptions{false});
+        const std::vector<LoopId> crossing =
+            crossing_loops(current.mesh.surface, before, cycles[k]);
+        std::vector<DiscChoice> follow = loop_following_choices(crossing, before);
+
+        const auto first_ring = std::find_if(choices.begin(), choices.end(),
+                                             [](const DiscChoice& d) { return d.ring; });
+        if (follow_first)
+          choices.insert(choices.begin(), follow.begin(), follow.end());
+        else
+          choices.insert(first_ring, follow.begin(), follow.end());
+      }
       rep.cut_seconds += seconds_since(t1);
       HandleCut& hc = cuts[k];
       hc.cycle.clear();
@@ -719,7 +882,20 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
         ++hc.attempts;
         t1 = std::chrono::steady_clock::now();
         std::size_t trial_final = final_start;
-        CutSurface cut = cut_along(current, cycles[k], choice, &trial_final);
+        std::optional<Disc> disc;
+        if (choice.partner.empty()) {
+          disc = grid_disc(current, cycles[k], choice);
+        } else {
+          std::vector<Eigen::RowVector3d> points;
+          for (NodeId v : cycles[k]) points.emplace_back(current.mesh.points.row(v.value()));
+          disc = chord_disc(points, choice.partner);
+        }
+        if (!disc) {
+          rep.cut_seconds += seconds_since(t1);
+          note(choice, k, "no disc realises the pairing");
+          continue;
+        }
+        CutSurface cut = cut_along(current, cycles[k], choice.start, *disc, &trial_final);
         const stc::LoopSet loops = stc::find_loops(cut.mesh.surface, stc::FindLoopsOptions{false});
         ++loop_checks;
         rep.cut_seconds += seconds_since(t1);
@@ -729,36 +905,35 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
         }
         hc.grid_a = choice.a;
         hc.grid_b = choice.b;
+        hc.disc = disc_name(choice);
         if (!last) {
           if (search(cut, k + 1, trial_final)) return true;
           continue;
         }
-        t1 = std::chrono::steady_clock::now();
         ++weaves;
-        try {
-          BallWeave w = weave_ball(cut, options, trial_final);
-          rep.weave_seconds += seconds_since(t1);
+        for (const weave::WeaveOptions& attempt : *chain) {
           t1 = std::chrono::steady_clock::now();
-          stc::HexComplex glued;
-          glued.hexes = w.hexes;
-          glued.num_nodes = trial_final + w.interior;
-          const stc::ValidationReport v = stc::validate_hex_complex(glued);
-          rep.glue_seconds += seconds_since(t1);
-          if (!v.valid) {
-            note(choice, k, "glued complex invalid (" + v.summary().substr(0, 120) + ")");
-            continue;
+          try {
+            BallWeave w = weave_ball(cut, attempt, trial_final);
+            rep.weave_seconds += seconds_since(t1);
+            const std::string problem = glue_problem(w, trial_final + w.interior, rep);
+            if (!problem.empty()) {
+              note(choice, k, "glued complex invalid (" + problem.substr(0, 120) + ")");
+              continue;
+            }
+            if (&attempt != &chain->front()) ++rep.relaxed_weaves;
+            next_final = trial_final;
+            ball = std::move(w);
+            return true;
+          } catch (const WeaveError& e) {
+            rep.weave_seconds += seconds_since(t1);
+            note(choice, k, std::string("weave blocked: ") + std::string(e.what()).substr(0, 80));
+          } catch (const InvalidInput& e) {
+            // The weave refused the cut surface as a front (a bug of the cut, or a pinch):
+            // another choice may do.
+            rep.weave_seconds += seconds_since(t1);
+            note(choice, k, std::string("the weave refused the cut surface: ") + e.what());
           }
-          next_final = trial_final;
-          ball = std::move(w);
-          return true;
-        } catch (const WeaveError&) {
-          rep.weave_seconds += seconds_since(t1);
-          note(choice, k, "weave blocked");
-        } catch (const InvalidInput& e) {
-          // The weave refused the cut surface as a front (a bug of the cut, or a pinch):
-          // another choice may do.
-          rep.weave_seconds += seconds_since(t1);
-          note(choice, k, std::string("the weave refused the cut surface: ") + e.what());
         }
       }
       return false;
@@ -768,10 +943,20 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
       ball = weave_ball(solid, options, next_final);
       rep.weave_seconds += seconds_since(t1);
     } else if (const auto primary = cycles;
-               !search(solid, 0, next_final) &&
-               !std::any_of(fallbacks.begin(), fallbacks.end(), [&](const auto& set) {
-                 cycles = set;
-                 return search(solid, 0, next_final);
+               !std::any_of(passes.begin(), passes.end(), [&](const Pass& pass) {
+                 follow_first = pass.follow_first;
+                 chain = &pass.chain;
+                 loop_checks = 0;
+                 weaves = 0;
+                 self_intersecting_cuts = 0;
+                 failures.clear();
+                 cycles = primary;
+                 for (HandleCut& hc : cuts) hc.attempts = 0;
+                 if (search(solid, 0, next_final)) return true;
+                 return std::any_of(fallbacks.begin(), fallbacks.end(), [&](const auto& set) {
+                   cycles = set;
+                   return search(solid, 0, next_final);
+                 });
                })) {
       cycles = primary;
       std::string names;
@@ -793,15 +978,7 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
     }
     for (HandleCut& hc : cuts) rep.cuts.push_back(std::move(hc));
     next_final += ball->interior;
-    const std::size_t hex_offset = result.complex.hexes.size();
-    for (const stc::Hex& h : ball->hexes) result.complex.hexes.push_back(h);
-    for (std::int32_t s : ball->woven.hex_shrink) result.hex_shrink.push_back(s);
-    for (const std::string& r : ball->woven.hex_rule) result.hex_rule.push_back(r);
-    add_stats(result.stats, ball->woven.stats);
-    for (weave::TraceEvent e : ball->woven.trace) {
-      if (e.hex.is_valid()) e.hex = HexId(e.hex.index() + hex_offset);
-      result.trace.push_back(std::move(e));
-    }
+    append_ball(result, *ball);
   }
   const auto t2 = std::chrono::steady_clock::now();
   // Interior nodes were numbered solid by solid (discs first, then the weave's); the weave's

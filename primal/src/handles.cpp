@@ -72,6 +72,57 @@ void grow_tree(const Graph& g, std::size_t root, Tree& t) {
   }
 }
 
+/// A breadth-first tree from `root` in which the nodes marked in `leaf` are left as leaves
+/// while the others reach the rest; then the nodes reachable only through them.
+void grow_tree_avoiding(const Graph& g, std::size_t root, const std::vector<char>& leaf, Tree& t) {
+  t.parent[root] = kNone;
+  t.parent_edge[root] = kNone;
+  t.depth[root] = 0;
+  std::size_t head = t.order.size();
+  t.order.push_back(root);
+  std::vector<std::size_t> held;
+  for (int phase = 0; phase < 2; ++phase) {
+    if (phase == 1) {
+      for (std::size_t v : held) t.order.push_back(v);
+      held.clear();
+    }
+    while (head < t.order.size()) {
+      const std::size_t v = t.order[head++];
+      if (phase == 0 && leaf[v] != 0 && v != root) {
+        held.push_back(v);
+        continue;
+      }
+      for (const auto& [w, e] : g.adj[v]) {
+        if (t.depth[w] != kNone) continue;
+        t.depth[w] = t.depth[v] + 1;
+        t.parent[w] = v;
+        t.parent_edge[w] = e;
+        t.order.push_back(w);
+      }
+    }
+  }
+}
+
+/// Whether the segment a-b crosses the triangle (p, q, r) strictly inside both.
+bool segment_hits_triangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                           const Eigen::Vector3d& p, const Eigen::Vector3d& q,
+                           const Eigen::Vector3d& r) {
+  const Eigen::Vector3d dir = b - a;
+  const Eigen::Vector3d e1 = q - p;
+  const Eigen::Vector3d e2 = r - p;
+  const Eigen::Vector3d h = dir.cross(e2);
+  const double det = e1.dot(h);
+  if (std::abs(det) < 1e-300) return false;
+  const Eigen::Vector3d t = a - p;
+  const double u = t.dot(h) / det;
+  if (u <= 0.0 || u >= 1.0) return false;
+  const Eigen::Vector3d k = t.cross(e1);
+  const double w = dir.dot(k) / det;
+  if (w <= 0.0 || u + w >= 1.0) return false;
+  const double s = e2.dot(k) / det;
+  return s > 0.0 && s < 1.0;
+}
+
 Tree empty_tree(std::size_t n) {
   Tree t;
   t.parent.assign(n, kNone);
@@ -274,78 +325,6 @@ HandleDiagnosis diagnose_handles(const SurfaceMesh& mesh, const HandleOptions& o
   for (std::size_t q = 0; q < surface.num_quads(); ++q)
     for (NodeId v : surface.quads[q]) node_component[v.index()] = topo.quad_components[q].index();
 
-  // Tree-cotree decomposition: a spanning forest of the nodes, a spanning forest of the quads
-  // across the other edges; the 2g edges left give the generators.
-  Tree tree = empty_tree(n);
-  for (std::size_t v = 0; v < n; ++v)
-    if (node_component[v] != kNone && tree.depth[v] == kNone) grow_tree(g, v, tree);
-  std::vector<char> in_tree(num_edges, 0);
-  for (std::size_t v = 0; v < n; ++v)
-    if (tree.parent_edge[v] != kNone) in_tree[tree.parent_edge[v]] = 1;
-  const std::size_t nq = surface.num_quads();
-  std::vector<std::size_t> qparent(nq, kNone);
-  std::vector<std::size_t> qparent_edge(nq, kNone);
-  std::vector<std::size_t> qdepth(nq, kNone);
-  std::vector<char> in_cotree(num_edges, 0);
-  for (std::size_t start = 0; start < nq; ++start) {
-    if (qdepth[start] != kNone) continue;
-    qdepth[start] = 0;
-    std::deque<std::size_t> queue{start};
-    while (!queue.empty()) {
-      const std::size_t q = queue.front();
-      queue.pop_front();
-      for (int s = 0; s < 4; ++s) {
-        const stc::QuadSide side{QuadId(q), s};
-        const stc::EdgeId e = topo.edge_of(side);
-        const stc::QuadSide other = topo.neighbour(side);
-        if (!e.is_valid() || !other.is_valid() || in_tree[e.index()] != 0) continue;
-        const std::size_t r = other.quad.index();
-        if (qdepth[r] != kNone) continue;
-        qdepth[r] = qdepth[q] + 1;
-        qparent[r] = q;
-        qparent_edge[r] = e.index();
-        in_cotree[e.index()] = 1;
-        queue.push_back(r);
-      }
-    }
-  }
-  std::vector<std::size_t> leftover;
-  for (std::size_t e = 0; e < num_edges; ++e)
-    if (in_tree[e] == 0 && in_cotree[e] == 0) leftover.push_back(e);
-  const std::size_t num_gen = leftover.size();
-  if (num_gen != 2 * static_cast<std::size_t>(out.genus)) {
-    out.undecided_reason = "the tree-cotree decomposition left " + std::to_string(num_gen) +
-                           " edges for genus " + std::to_string(out.genus) +
-                           " (expected 2g): the surface is not a closed manifold";
-    return out;
-  }
-  const std::size_t words = (num_gen + 63) / 64;
-  // mask[e]: the dual generator cycles that cross edge e.
-  std::vector<Bits> mask(num_edges, Bits(words, 0));
-  std::vector<std::vector<std::size_t>> generators;
-  for (std::size_t i = 0; i < num_gen; ++i) {
-    const std::size_t e = leftover[i];
-    flip(mask[e], i);
-    const auto uses = topo.uses(stc::EdgeId(e));
-    std::size_t a = uses[0].quad.index();
-    std::size_t b = uses[1].quad.index();
-    while (qdepth[a] > qdepth[b]) {
-      flip(mask[qparent_edge[a]], i);
-      a = qparent[a];
-    }
-    while (qdepth[b] > qdepth[a]) {
-      flip(mask[qparent_edge[b]], i);
-      b = qparent[b];
-    }
-    while (a != b) {
-      flip(mask[qparent_edge[a]], i);
-      flip(mask[qparent_edge[b]], i);
-      a = qparent[a];
-      b = qparent[b];
-    }
-    generators.push_back(tree_cycle(tree, topo.edges[e].a.index(), topo.edges[e].b.index()));
-  }
-
   // Push-offs: each node moves along its normal (area-weighted quad normals) by a fraction of
   // its shortest edge; the normal cone must be pointed (the normal within 84 degrees of every
   // quad normal at the node).
@@ -375,6 +354,154 @@ HandleDiagnosis diagnose_handles(const SurfaceMesh& mesh, const HandleOptions& o
     normal[v].normalize();
   }
   const double scale = (hi - lo).norm();
+  // Nodes whose normal cone is not pointed (no normal within 84 degrees of every quad there).
+  std::vector<char> unpointed(n, 0);
+  bool any_unpointed = false;
+  for (std::size_t v = 0; v < n; ++v) {
+    for (const Eigen::Vector3d& nf : quad_normals[v]) {
+      if (node_component[v] != kNone && !(normal[v].dot(nf) > 0.1)) {
+        unpointed[v] = 1;
+        any_unpointed = true;
+      }
+    }
+  }
+  // Tree-cotree decomposition: a spanning forest of the nodes, a spanning forest of the quads
+  // across the other edges; the 2g edges left give the generators.
+  // When a generator meets a node of unpointed cone, once more with those nodes kept as
+  // leaves of the node tree and the other edges at them taken first into the quad tree, so
+  // that the generators go round them where the surface allows it.
+  std::vector<std::size_t> leftover;
+  std::vector<Bits> mask;
+  std::vector<std::vector<std::size_t>> generators;
+  std::size_t num_gen = 0;
+  std::size_t words = 0;
+  for (int variant = 0; variant < 2; ++variant) {
+    const bool avoid = variant == 1;
+    Tree tree = empty_tree(n);
+    for (std::size_t v = 0; v < n; ++v) {
+      if (node_component[v] == kNone || tree.depth[v] != kNone) continue;
+      if (avoid)
+        grow_tree_avoiding(g, v, unpointed, tree);
+      else
+        grow_tree(g, v, tree);
+    }
+    std::vector<char> in_tree(num_edges, 0);
+    for (std::size_t v = 0; v < n; ++v)
+      if (tree.parent_edge[v] != kNone) in_tree[tree.parent_edge[v]] = 1;
+    const std::size_t nq = surface.num_quads();
+    std::vector<std::size_t> qparent(nq, kNone);
+    std::vector<std::size_t> qparent_edge(nq, kNone);
+    std::vector<std::size_t> qdepth(nq, kNone);
+    std::vector<char> in_cotree(num_edges, 0);
+    const auto at_unpointed = [&](stc::EdgeId e) {
+      return avoid && e.is_valid() &&
+             (unpointed[topo.edges[e.index()].a.index()] != 0 ||
+              unpointed[topo.edges[e.index()].b.index()] != 0);
+    };
+    for (std::size_t start = 0; start < nq; ++start) {
+      if (qdepth[start] != kNone) continue;
+      qdepth[start] = 0;
+      std::deque<std::size_t> queue{start};
+      while (!queue.empty()) {
+        const std::size_t q = queue.front();
+        queue.pop_front();
+        for (int s = 0; s < 4; ++s) {
+          const stc::QuadSide side{QuadId(q), s};
+          const stc::EdgeId e = topo.edge_of(side);
+          const stc::QuadSide other = topo.neighbour(side);
+          if (!e.is_valid() || !other.is_valid() || in_tree[e.index()] != 0) continue;
+          const std::size_t r = other.quad.index();
+          if (qdepth[r] != kNone) continue;
+          qdepth[r] = qdepth[q] + 1;
+          qparent[r] = q;
+          qparent_edge[r] = e.index();
+          in_cotree[e.index()] = 1;
+          if (at_unpointed(e))
+            queue.push_front(r);
+          else
+            queue.push_back(r);
+        }
+      }
+    }
+    leftover.clear();
+    for (std::size_t e = 0; e < num_edges; ++e)
+      if (in_tree[e] == 0 && in_cotree[e] == 0) leftover.push_back(e);
+    num_gen = leftover.size();
+    if (num_gen != 2 * static_cast<std::size_t>(out.genus)) {
+      out.undecided_reason = "the tree-cotree decomposition left " + std::to_string(num_gen) +
+                             " edges for genus " + std::to_string(out.genus) +
+                             " (expected 2g): the surface is not a closed manifold";
+      return out;
+    }
+    words = (num_gen + 63) / 64;
+    // mask[e]: the dual generator cycles that cross edge e.
+    mask.assign(num_edges, Bits(words, 0));
+    generators.clear();
+    for (std::size_t i = 0; i < num_gen; ++i) {
+      const std::size_t e = leftover[i];
+      flip(mask[e], i);
+      const auto uses = topo.uses(stc::EdgeId(e));
+      std::size_t a = uses[0].quad.index();
+      std::size_t b = uses[1].quad.index();
+      while (qdepth[a] > qdepth[b]) {
+        flip(mask[qparent_edge[a]], i);
+        a = qparent[a];
+      }
+      while (qdepth[b] > qdepth[a]) {
+        flip(mask[qparent_edge[b]], i);
+        b = qparent[b];
+      }
+      while (a != b) {
+        flip(mask[qparent_edge[a]], i);
+        flip(mask[qparent_edge[b]], i);
+        a = qparent[a];
+        b = qparent[b];
+      }
+      generators.push_back(tree_cycle(tree, topo.edges[e].a.index(), topo.edges[e].b.index()));
+    }
+    const bool meets_unpointed =
+        std::any_of(generators.begin(), generators.end(), [&](const auto& cy) {
+          return std::any_of(cy.begin(), cy.end(),
+                             [&](std::size_t v) { return unpointed[v] != 0; });
+        });
+    if (!meets_unpointed || !any_unpointed) break;
+    // Going round nodes of unpointed cone is sound only where the surface is embedded: a
+    // quad at such a node pierced by an edge of the surface (a fold through the solid), or an
+    // edge at it piercing a quad, leaves it undecided.
+    const auto pierces = [&](std::size_t a, std::size_t b, const stc::Quad& q) {
+      for (NodeId x : q)
+        if (x.index() == a || x.index() == b) return false;
+      // Pierced whichever diagonal splits the quad (a non-planar quad is not misread).
+      const auto hits = [&](int d) {
+        const auto c = [&](int k) { return pt(q[static_cast<std::size_t>((k + d) % 4)].index()); };
+        return segment_hits_triangle(pt(a), pt(b), c(0), c(1), c(2)) ||
+               segment_hits_triangle(pt(a), pt(b), c(0), c(2), c(3));
+      };
+      return hits(0) && hits(1);
+    };
+    for (std::size_t v = 0; v < n; ++v) {
+      if (unpointed[v] == 0) continue;
+      for (const stc::Quad& q : surface.quads) {
+        const bool at_v = std::find(q.begin(), q.end(), NodeId(v)) != q.end();
+        // A quad at v against every edge; any other quad against the edges at v.
+        const std::size_t count = at_v ? num_edges : g.adj[v].size();
+        for (std::size_t i = 0; i < count; ++i) {
+          const std::size_t e = at_v ? i : g.adj[v][i].second;
+          const std::size_t a = topo.edges[e].a.index();
+          const std::size_t b = topo.edges[e].b.index();
+          if (!pierces(a, b, q)) continue;
+          out.undecided_reason = "the quads around node " + NodeId(v).str() +
+                                 " face too many ways and the surface is not embedded there "
+                                 "(edge " +
+                                 NodeId(a).str() + "-" + NodeId(b).str() + " pierces quad " +
+                                 q[0].str() + "-" + q[1].str() + "-" + q[2].str() + "-" +
+                                 q[3].str() + ")";
+          return out;
+        }
+      }
+    }
+  }
+
   for (const auto& cycle : generators) {
     for (std::size_t v : cycle) {
       for (const Eigen::Vector3d& nf : quad_normals[v]) {

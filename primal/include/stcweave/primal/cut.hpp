@@ -5,7 +5,8 @@
 /// Each solid (a connected shell) is woven on its own. A solid of genus g > 0 is first cut
 /// along g quad-meshed discs, one per handle cycle found by `diagnose_handles`: the disc is a
 /// grid whose boundary is the cycle (corners where the cycle turns most), its nodes placed
-/// by transfinite interpolation of the cycle. Cutting along it duplicates the cycle's nodes and
+/// by transfinite interpolation of the cycle, or a loop-following chord disc (its dual chords
+/// pair the cycle's crossings of each loop, so that crossing loops are not merged). Cutting along it duplicates the cycle's nodes and
 /// the disc (one copy on each side), which lowers the genus by one; the cut ball is woven with
 /// every node of the cut surface fixed (the weave takes them as input nodes), then the two
 /// copies are glued back by identifying their nodes: the disc's nodes become interior nodes
@@ -31,6 +32,9 @@ struct CutOptions {
   /// Cut surfaces whose loops are checked per solid (over every handle's disc choices, in a
   /// depth-first search) before giving up.
   std::size_t max_loop_checks = 2000;
+  /// When the weave of a cut ball blocks, it is tried once more with up to this many one-face
+  /// pillows at blocked nodes (`weave::WeaveOptions::recovery_pillows`); 0: no second try.
+  std::size_t recovery_pillows = 16;
 };
 
 /// One handle cut: where, with which disc, after how many attempts.
@@ -38,6 +42,9 @@ struct HandleCut {
   std::vector<NodeId> cycle;  ///< surface node ids (of the woven surface)
   int grid_a = 0;             ///< the disc is a grid_a x grid_b grid of quads
   int grid_b = 0;
+  /// The disc, in words: "3x3" (a grid), "3x3 O-grid", "loop-following (14 quads)" (a chord
+  /// disc pairing the crossings of each loop, grid_a = grid_b = 0), "annulus 1x4" (a cavity).
+  std::string disc;
   std::size_t attempts = 0;  ///< disc choices tried, loop-checked or woven (the last was kept)
 };
 
@@ -48,6 +55,9 @@ struct SolidsReport {
   double cut_seconds = 0.0;    ///< building discs and cut surfaces
   double weave_seconds = 0.0;  ///< the weaves of the cut balls (including discarded ones)
   double glue_seconds = 0.0;   ///< gluing, renumbering, checking the glued complexes
+  /// Solids whose kept weave was not the first of the second pass's chain (recovery pillows
+  /// or the reliable rule set after the weave with the given options blocked).
+  std::size_t relaxed_weaves = 0;
 };
 
 /// Weaves every solid of `mesh` on its own, cutting its handles first, and combines them:

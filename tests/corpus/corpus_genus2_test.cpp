@@ -1,0 +1,61 @@
+// Genus > 0 cases of the shared corpus that the first handle cut refused (label `corpus`):
+// the handle diagnosis of a surface with a node of unpointed normal cone (pipe_helix), and
+// the loop-following chord discs on a triangle-split-like surface whose loops crossing the
+// handle cycles cross each other (HexaLab's Fertility, genus 4).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "stcweave/primal/cut.hpp"
+#include "stcweave/primal/diagnose.hpp"
+#include "stcweave/primal/handles.hpp"
+#include "stcweave/primal/io.hpp"
+#include "stcweave/primal/pipeline.hpp"
+#include "stcweave/stc/validate.hpp"
+#include "support/corpus.hpp"
+
+namespace stcweave {
+namespace {
+
+TEST(CorpusGenus2, PipeHelixIsUndecidedBecauseItsSurfaceIsNotEmbedded) {
+  // Its generators meet a node of unpointed normal cone (n174); going round it is refused
+  // because an edge pierces a quad there: the undecided reason says so.
+  const auto path = test::shared_data() / "real/polycube-nightmares-quad/pipe_helix.msh";
+  if (!std::filesystem::exists(path)) {
+    if (test::shared_data_required()) FAIL() << path << " missing";
+    GTEST_SKIP() << "shared data not found at " << STCWEAVE_SHARED_DATA;
+  }
+  const primal::SurfaceDiagnosis d = primal::diagnose(primal::read_mesh(path));
+  ASSERT_TRUE(d.handles);
+  EXPECT_FALSE(d.handles->decided);
+  EXPECT_NE(d.handles->undecided_reason.find("not embedded there"), std::string::npos)
+      << d.handles->undecided_reason;
+  EXPECT_EQ(d.handles->genus, 1);
+}
+
+TEST(CorpusGenus2, FertilityIsCutAlongLoopFollowingDiscsIntoAValidComplex) {
+  const auto path = test::shared_data() / "real/hexalab/evpc2016_Fertility_hex-small.vtk";
+  if (!std::filesystem::exists(path)) {
+    if (test::shared_data_required()) FAIL() << path << " missing";
+    GTEST_SKIP() << "shared data not found at " << STCWEAVE_SHARED_DATA;
+  }
+  const auto file = primal::read_mesh(path);
+  primal::SurfaceMesh surface = primal::surface_of(file);
+  primal::orient_outward(surface);
+  const primal::MeshOptions options;
+  primal::SolidsReport report;
+  weave::WeaveResult woven;
+  ASSERT_NO_THROW(woven = primal::weave_solids(surface, options.weave, options.cut, &report));
+  const stc::ValidationReport v = stc::validate_hex_complex(woven.complex, &surface.surface);
+  EXPECT_TRUE(v.valid) << v.summary();
+  ASSERT_EQ(report.cuts.size(), 4u);
+  for (const primal::HandleCut& cut : report.cuts) {
+    SCOPED_TRACE(cut.disc);
+    EXPECT_EQ(cut.disc.rfind("loop-following", 0), 0u);
+    EXPECT_EQ(cut.grid_a, 0);
+  }
+  EXPECT_GT(woven.complex.hexes.size(), surface.surface.num_quads() / 2);
+}
+
+}  // namespace
+}  // namespace stcweave
