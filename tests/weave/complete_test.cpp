@@ -106,6 +106,9 @@ struct ClosureCase {
   std::size_t blocked_extended;
 };
 
+/// The quad count names a case (in gtest's and ctest's test names).
+void PrintTo(const ClosureCase& c, std::ostream* os) { *os << c.quads << "_quads"; }
+
 class EveryEvenSphere : public ::testing::TestWithParam<ClosureCase> {};
 
 TEST_P(EveryEvenSphere, WeavesUnderBothRuleSets) {
