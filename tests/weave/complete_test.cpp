@@ -107,7 +107,10 @@ struct ClosureCase {
 };
 
 /// The quad count names a case (in gtest's and ctest's test names).
-void PrintTo(const ClosureCase& c, std::ostream* os) { *os << c.quads << "_quads"; }
+// NOLINTNEXTLINE(readability-identifier-naming): gtest looks the printer up by this name.
+void PrintTo(const ClosureCase& c, std::ostream* os) {
+  *os << c.quads << "_quads";
+}
 
 class EveryEvenSphere : public ::testing::TestWithParam<ClosureCase> {};
 

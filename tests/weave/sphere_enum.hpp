@@ -52,13 +52,15 @@ inline std::map<std::size_t, std::vector<stc::QuadSurface>> sphere_closure(std::
       if (n + 1 <= max_quads) {
         for (std::size_t v = 0; v < s.num_nodes; ++v) {
           std::size_t d = 0;
-          for (const stc::Quad& q : s.quads)
+          for (const stc::Quad& q : s.quads) {
             for (NodeId m : q) d += m.index() == v ? 1 : 0;
-          for (std::size_t i = 0; i < d; ++i)
+          }
+          for (std::size_t i = 0; i < d; ++i) {
             for (std::size_t m = 2; m + 2 <= d; ++m) {
               stc::QuadSurface t = s;
               if (split_node(t, v, i, m)) add(std::move(t));
             }
+          }
         }
       }
       if (n + 4 <= max_quads) {

@@ -102,7 +102,7 @@ inline std::vector<std::uint32_t> canonical_code(const stc::QuadSurface& s) {
     for (std::size_t k = 0; k < 4; ++k)
       edge[{s.quads[q][k].index(), s.quads[q][(k + 1) % 4].index()}] = {q, k};
   std::vector<std::uint32_t> best;
-  for (std::size_t q0 = 0; q0 < s.quads.size(); ++q0)
+  for (std::size_t q0 = 0; q0 < s.quads.size(); ++q0) {
     for (std::size_t r0 = 0; r0 < 4; ++r0) {
       std::vector<std::uint32_t> code;
       std::vector<std::int64_t> label(s.num_nodes, -1);
@@ -127,6 +127,7 @@ inline std::vector<std::uint32_t> canonical_code(const stc::QuadSurface& s) {
       }
       if (best.empty() || code < best) best = code;
     }
+  }
   return best;
 }
 
