@@ -22,6 +22,8 @@
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/stc/hex_complex.hpp"
 
+#include "node_hexes.hpp"
+
 namespace stcweave::primal {
 namespace {
 
@@ -784,16 +786,9 @@ ShapeReport local_shape(HexMesh& mesh, const std::vector<bool>& fixed,
     return report;
   }
   // Hexes around each node (CSR) and edge neighbours of each node.
-  std::vector<std::size_t> start(n + 1, 0);
-  for (const stc::Hex& h : hexes)
-    for (const NodeId v : h) ++start[v.index() + 1];
-  for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
-  std::vector<std::size_t> around(start[n]);
-  {
-    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-    for (std::size_t h = 0; h < hexes.size(); ++h)
-      for (const NodeId v : hexes[h]) around[fill[v.index()]++] = h;
-  }
+  const NodeHexes incidence = node_hexes(hexes, n);
+  const std::vector<std::size_t>& start = incidence.start;
+  const std::vector<std::size_t>& around = incidence.around;
   const auto edges = stc::unique_edges(mesh.complex);
   std::vector<std::vector<std::int32_t>> neighbours(n);
   for (const auto& [a, b] : edges) {

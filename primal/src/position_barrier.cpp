@@ -18,6 +18,8 @@
 #include "stcweave/primal/quality.hpp"
 #include "stcweave/stc/errors.hpp"
 
+#include "node_hexes.hpp"
+
 namespace stcweave::primal {
 namespace {
 
@@ -209,16 +211,9 @@ BarrierReport raise_worst_corners(HexMesh& mesh, const std::vector<bool>& fixed,
     return report;
   }
   // Hexes around each node (CSR).
-  std::vector<std::size_t> start(n + 1, 0);
-  for (const stc::Hex& h : hexes)
-    for (const NodeId v : h) ++start[v.index() + 1];
-  for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
-  std::vector<std::size_t> around(start[n]);
-  {
-    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-    for (std::size_t h = 0; h < hexes.size(); ++h)
-      for (const NodeId v : hexes[h]) around[fill[v.index()]++] = h;
-  }
+  const NodeHexes incidence = node_hexes(hexes, n);
+  const std::vector<std::size_t>& start = incidence.start;
+  const std::vector<std::size_t>& around = incidence.around;
   report.stop = "round limit";
   int kept = 0;
   for (int round = 0; round < options.barrier_rounds; ++round) {
