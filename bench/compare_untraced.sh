@@ -44,20 +44,7 @@ while read -r name file; do
     expected=$(head -1 "$dir/$name.$rules.rc")
     [[ $rc == "$expected" ]] || { echo "DIFF  $name $rules exit $rc, recorded $expected"; diffs=$((diffs + 1)); }
     if [[ -f $base.json ]]; then
-      python3 - "$base.json" <<'PY'
-import json, sys
-p = sys.argv[1]
-r = json.load(open(p))
-for k in ("input", "output"):
-    r.pop(k, None)
-def timeless(x):  # every "seconds" and "*_seconds" entry, at any depth, is a timing
-    if isinstance(x, dict):
-        return {k: timeless(v) for k, v in x.items() if k != "seconds" and not k.endswith("_seconds")}
-    if isinstance(x, list):
-        return [timeless(v) for v in x]
-    return x
-json.dump(timeless(r), open(p, "w"), indent=1, sort_keys=True)
-PY
+      python3 "$here/strip_report.py" "$base.json"
     fi
     for ext in vtk json; do
       a="$dir/$name.$rules.$ext"

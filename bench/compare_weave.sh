@@ -85,20 +85,7 @@ while read -r path rest; do
 done < <(grep -v '^\s*#' "$here/shared.manifest" | grep -v '^\s*$')
 
 strip_report() {
-  python3 - "$1" <<'EOF'
-import json, sys
-p = sys.argv[1]
-r = json.load(open(p))
-for k in ("input", "output"):
-    r.pop(k, None)
-def timeless(x):  # every "seconds" and "*_seconds" entry, at any depth, is a timing
-    if isinstance(x, dict):
-        return {k: timeless(v) for k, v in x.items() if k != "seconds" and not k.endswith("_seconds")}
-    if isinstance(x, list):
-        return [timeless(v) for v in x]
-    return x
-json.dump(timeless(r), open(p, "w"), indent=1, sort_keys=True)
-EOF
+  python3 "$here/strip_report.py" "$1"
 }
 
 runs=0
