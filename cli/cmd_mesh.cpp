@@ -5,8 +5,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -192,21 +190,6 @@ nlohmann::json trace_json(const weave::TraceEvent& e) {
   return j;
 }
 
-void write_text_atomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out) throw IoError("cannot write " + path + ": check the folder exists and is writable");
-    out << text;
-    out.flush();
-    if (!out) throw IoError("writing " + path + " failed (disk full?)");
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw IoError("cannot rename " + tmp + " to " + path);
-  }
-}
-
 int run_mesh(const MeshArgs& a) {
   primal::MeshOptions options;
   apply_weave_options(a.weave, options.weave);
@@ -279,7 +262,7 @@ int run_mesh(const MeshArgs& a) {
     try {
       return primal::mesh_file(file, options);
     } catch (const Error&) {
-      if (!a.trace.empty()) write_text_atomically(a.trace, *trace_text);
+      if (!a.trace.empty()) primal::write_text_file(a.trace, *trace_text);
       throw;
     }
   }();
@@ -403,8 +386,8 @@ int run_mesh(const MeshArgs& a) {
                         {"ball_weave_seconds", r.solids.weave_seconds},
                         {"glue_seconds", r.solids.glue_seconds}};
   }
-  if (!a.report.empty()) write_text_atomically(a.report, report.dump(1) + "\n");
-  if (!a.trace.empty()) write_text_atomically(a.trace, *trace_text);
+  if (!a.report.empty()) primal::write_text_file(a.report, report.dump(1) + "\n");
+  if (!a.trace.empty()) primal::write_text_file(a.trace, *trace_text);
   if (!a.quiet) {
     std::cout << "input      " << a.input << ": " << r.surface.surface.quads.size() << " quads";
     if (r.orientation.flipped_quads > 0)
