@@ -144,7 +144,8 @@ TEST_F(CadCli, AnIgesShellWithAFaceMissingOrGarbageExitsTwo) {
   }
   const auto [junk, nothing] = mesh(at("junk.iges"), "junk");
   EXPECT_EQ(junk.code, 2) << junk.out;
-  EXPECT_THAT(junk.out, HasSubstr("junk.iges"));
+  // OpenCASCADE's IGES reader reads nothing from it without an error: refused as empty.
+  EXPECT_THAT(junk.out, HasSubstr("junk.iges: holds no shape at all"));
   EXPECT_FALSE(fs::exists(at("junk.vtk")));
 }
 
