@@ -31,14 +31,21 @@ void add_cad_options(CLI::App* sub, CadArgs& args, const std::string& input) {
           ->check(CLI::IsMember({1, 5, 6}))
           ->capture_default_str()
           ->group(group);
+  CLI::Option* no_split =
+      sub->add_flag("--no-cad-split", args.no_split,
+                    "CAD input: do not split a recognised solid (a cylinder, a sphere, a solid "
+                    "of planar faces) into blocks whose faces all have four corners before "
+                    "meshing its surface")
+          ->group(group);
   sub->add_option("--surface-out", args.surface_out,
                   "write the quad surface that is woven (.obj, .off, .vtk): for a CAD input, "
                   "the surface Gmsh made")
       ->group(group);
-  sub->parse_complete_callback([size, recipe, algorithm, &input] {
-    if ((size->count() > 0 || recipe->count() > 0 || algorithm->count() > 0) &&
+  sub->parse_complete_callback([size, recipe, algorithm, no_split, &input] {
+    if ((size->count() > 0 || recipe->count() > 0 || algorithm->count() > 0 ||
+         no_split->count() > 0) &&
         !primal::is_cad_path(input)) {
-      throw CLI::ValidationError("--size/--cad-recipe/--cad-triangles",
+      throw CLI::ValidationError("--size/--cad-recipe/--cad-triangles/--no-cad-split",
                                  "apply to CAD inputs only (.step, .stp, .brep, .iges, .igs), "
                                  "not to " +
                                      input);
@@ -55,6 +62,7 @@ InputSurface read_input(const std::string& input, primal::Format format, const C
     options.recipe = primal::cad_recipe_from_name(args.recipe);
     options.triangle_algorithm = args.triangle_algorithm;
     options.verbose = progress;
+    options.split = !args.no_split;
     primal::CadSurface cad = primal::mesh_cad_surface(input, options);
     in.file = std::move(cad.file);
     in.cad = std::move(cad.record);
@@ -82,6 +90,7 @@ nlohmann::json cad_json(const primal::CadRecord& r) {
           {"gmsh_version", r.gmsh_version},
           {"recipe", primal::cad_recipe_name(r.recipe)},
           {"reason", r.reason},
+          {"split", r.split},
           {"size", r.size},
           {"volumes", r.volumes},
           {"faces", r.faces},

@@ -1,8 +1,9 @@
 #pragma once
 /// \file
 /// The CAD front end of `stcweave mesh` (issue 15): `--size`, `--cad-recipe`,
-/// `--cad-triangles` and `--surface-out`, and the reading of the input, a CAD solid (STEP, BREP,
-/// IGES: meshed into a quad surface by `primal::mesh_cad_surface`) or any mesh file
+/// `--cad-triangles`, `--no-cad-split` and `--surface-out`, and the reading of the input, a CAD
+/// solid (STEP, BREP, IGES: meshed into a quad surface by `primal::mesh_cad_surface`) or any mesh
+/// file
 /// (`primal::read_mesh`).
 
 #include <CLI/CLI.hpp>
@@ -20,6 +21,7 @@ struct CadArgs {
   std::string recipe = "auto";  ///< --cad-recipe
   int triangle_algorithm = primal::CadOptions{}.triangle_algorithm;  ///< --cad-triangles
   std::string surface_out;                                           ///< --surface-out
+  bool no_split = false;                                             ///< --no-cad-split
 };
 
 /// Adds --size, --cad-recipe, --cad-triangles and --surface-out to `sub`, in an option group "CAD

@@ -3,7 +3,8 @@
 
     data/make_cad_examples.py              writes data/plate_slot.step, data/lblock_blocks.step,
                                            data/plate_hole_blocks.step, data/torus_blocks.step,
-                                           data/open_shell.step and data/closed_shell.step
+                                           data/open_shell.step, data/closed_shell.step and
+                                           data/cylinder_tilted.step
     data/make_cad_examples.py --shapes DIR writes the .step files of SHAPES into DIR (for
                                            bench/cad_vs_gmsh.py): cube, lblock, cylinder,
                                            sphere, plate_hole and torus as one solid each, and
@@ -20,6 +21,8 @@ plate_hole_blocks.step: a 4 x 2 x 0.5 plate with a through-hole of radius 0.5 at
 torus_blocks.step: a torus (radius 1, tube radius 0.4) as 20 blocks, the tube's section split
 as an O-grid and swept in four quarter turns, every face four-sided. (The same two as one
 solid each, plate_hole and torus of --shapes, have faces without four corners.)
+cylinder_tilted.step: a cylinder of radius 0.5 and height 1 whose axis runs from (0.2, 0.1, 0)
+along (1, 2, 2) / 3, not along a coordinate axis (the O-grid split must follow it).
 open_shell.step: a unit cube's boundary with one face missing: five faces and no volume, the
 input stcweave must refuse ("not a closed solid"); closed_shell.step: all six faces and no
 volume, which stcweave sews into a solid (as IGES files, which rarely hold solids, need).
@@ -45,6 +48,10 @@ def plate_slot(occ):
     end = occ.addCylinder(2, depth - width / 2, -0.1, 0, 0, 0.7, width / 2)
     slot, _ = occ.fuse([(3, box)], [(3, end)])
     occ.cut([(3, plate)], slot)
+
+
+def cylinder_tilted(occ):
+    occ.addCylinder(0.2, 0.1, 0, 1 / 3, 2 / 3, 2 / 3, 0.5)
 
 
 def open_shell(occ):
@@ -213,6 +220,7 @@ def main():
         write(os.path.join(here, "lblock_blocks.step"), shapes, "lblock_blocks")
         write(os.path.join(here, "plate_hole_blocks.step"), plate_hole_blocks)
         write(os.path.join(here, "torus_blocks.step"), torus_blocks)
+        write(os.path.join(here, "cylinder_tilted.step"), cylinder_tilted)
     else:
         print(__doc__, file=sys.stderr)
         sys.exit(1)

@@ -16,6 +16,8 @@
 #if STCWEAVE_HAVE_GMSH
 #include <unistd.h>
 
+#include "cad_split.hpp"
+
 #include <gmsh.h>
 #include <cstdio>
 #include <fstream>
@@ -452,6 +454,18 @@ CadSurface mesh_current_model(const CadOptions& options, CadRecord record) {
     gmsh::model::getEntities(volumes, 3);
   }
   record.volumes = volumes.size();
+  if (options.split && options.recipe != CadRecipe::TriangleSplit) {
+    const cad_detail::SplitResult split =
+        cad_detail::split_into_blocks(volumes, bbox_diagonal(volumes), [](int face) {
+          std::array<int, 4> sides{};
+          std::string why;
+          return four_sides(face, sides, why);
+        });
+    record.split = split.how;
+    if (!split.dropped.empty())
+      record.warnings.push_back("not split into blocks: " + split.dropped);
+    if (!split.how.empty()) gmsh::model::getEntities(volumes, 3);
+  }
   // The boundary of the union of the volumes (faces between two volumes are left out).
   gmsh::vectorpair boundary;
   gmsh::model::getBoundary(volumes, boundary, true, false, false);
@@ -584,6 +598,7 @@ CadSurface mesh_current_model(const CadOptions& options, CadRecord record) {
   if (recipe == CadRecipe::Transfinite) {
     record.recipe = CadRecipe::Transfinite;
     record.reason = "every one of the " + std::to_string(faces.size()) + " CAD faces has 4 corners";
+    if (!record.split.empty()) record.reason += " (" + record.split + ")";
     set_transfinite(four_cornered, record.size);
     for (const auto& [f, s] : four_cornered) structured.insert(f);
     gmsh::option::setNumber("Mesh.MeshSizeMax", record.size);

@@ -1,5 +1,6 @@
 // `stcweave mesh` on CAD input (issue 15): the recipe line, the report's "cad" record,
-// --surface-out, exit code 2 for what is not a closed solid, the build without Gmsh.
+// --surface-out, IGES input, splitting into blocks, exit code 2 for what is not a closed
+// solid, the build without Gmsh.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -10,8 +11,10 @@
 #include <string>
 
 #include "stcweave/primal/cad.hpp"
+#include "stcweave/primal/io.hpp"
 #include "support/cad.hpp"
 #include "support/cli_run.hpp"
+#include "support/iges.hpp"
 
 namespace {
 
@@ -24,27 +27,39 @@ class CadCli : public stcweave::test::CliTest {
  protected:
   CadCli() : CliTest("stcweave_cad_cli_") {}
   [[nodiscard]] std::string at(const std::string& name) const { return (dir_ / name).string(); }
+
+  /// What `mesh` gave: its exit code and output, and its report (null when none was written).
+  struct Meshed {
+    stcweave::test::CliRun run;
+    nlohmann::json report;
+  };
+  /// `stcweave mesh INPUT -o NAME.vtk ARGS --report NAME.json`, the one set-up of these tests.
+  [[nodiscard]] Meshed mesh(const std::string& input, const std::string& name,
+                            const std::string& args = "") const {
+    Meshed m{run_cli("mesh " + input + " -o " + at(name + ".vtk") + " " + args + " --report " +
+                     at(name + ".json")),
+             nullptr};
+    if (fs::exists(at(name + ".json"))) m.report = nlohmann::json::parse(slurp(at(name + ".json")));
+    return m;
+  }
 };
 
 TEST_F(CadCli, PlateWithASlotIsMeshedAndItsSurfaceWritten) {
   STCWEAVE_SKIP_WITHOUT_GMSH();
-  const auto r = run_cli("mesh " + data("plate_slot.step") + " -o " + at("plate.vtk") +
-                         " --size 0.5 --no-untangle --surface-out " + at("plate.obj") +
-                         " --report " + at("plate.json"));
+  const auto [r, report] = mesh(data("plate_slot.step"), "plate",
+                                "--size 0.5 --no-untangle --surface-out " + at("plate.obj"));
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_THAT(r.out, HasSubstr("mixed surface"));
   EXPECT_THAT(r.out, HasSubstr("valid      yes"));
   EXPECT_THAT(r.out, ::testing::Not(HasSubstr("Info")));  // Gmsh stays quiet
-  const nlohmann::json report = nlohmann::json::parse(slurp(at("plate.json")));
   EXPECT_EQ(report["cad"]["recipe"], "mixed");
   EXPECT_GT(report["cad"]["structured_faces"].get<int>(), 0);
   EXPECT_EQ(report["cad"]["quads"], report["quads"]);
   EXPECT_LT(report["cad"]["max_cad_distance"].get<double>(), 1e-7);
+  EXPECT_EQ(report["cad"]["split"], "");  // curved faces: not a solid the split recognises
   // The surface written is the one woven: meshing it again gives the same number of hexes.
-  const auto again = run_cli("mesh " + at("plate.obj") + " -o " + at("again.vtk") +
-                             " --no-untangle --report " + at("again.json"));
+  const auto [again, report2] = mesh(at("plate.obj"), "again", "--no-untangle");
   ASSERT_EQ(again.code, 0) << again.out;
-  const nlohmann::json report2 = nlohmann::json::parse(slurp(at("again.json")));
   EXPECT_EQ(report2["quads"], report["quads"]);
   EXPECT_EQ(report2["hexes"], report["hexes"]);
   EXPECT_EQ(report2["cad"], nullptr);
@@ -52,11 +67,9 @@ TEST_F(CadCli, PlateWithASlotIsMeshedAndItsSurfaceWritten) {
 
 TEST_F(CadCli, AnAssemblyOfThreeBlocksIsMergedAndStructured) {
   STCWEAVE_SKIP_WITHOUT_GMSH();
-  const auto r = run_cli("mesh " + data("lblock_blocks.step") + " -o " + at("l.vtk") +
-                         " --size 0.25 --report " + at("l.json"));
+  const auto [r, report] = mesh(data("lblock_blocks.step"), "l", "--size 0.25");
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_THAT(r.out, HasSubstr("transfinite surface"));
-  const nlohmann::json report = nlohmann::json::parse(slurp(at("l.json")));
   EXPECT_EQ(report["cad"]["volumes"], 3);
   // The faces the STEP file holds twice (one copy per block) are merged and left out.
   EXPECT_EQ(report["cad"]["faces"], 14);
@@ -70,11 +83,9 @@ TEST_F(CadCli, AnAssemblyOfThreeBlocksIsMergedAndStructured) {
 
 TEST_F(CadCli, ATorusOfBlocksFromDataIsMeshedThroughItsHandle) {
   STCWEAVE_SKIP_WITHOUT_GMSH();
-  const auto r = run_cli("mesh " + data("torus_blocks.step") + " -o " + at("t.vtk") +
-                         " --size 0.5 --report " + at("t.json"));
+  const auto [r, report] = mesh(data("torus_blocks.step"), "t", "--size 0.5");
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_THAT(r.out, HasSubstr("transfinite surface"));
-  const nlohmann::json report = nlohmann::json::parse(slurp(at("t.json")));
   EXPECT_EQ(report["cad"]["volumes"], 20);
   EXPECT_EQ(report["cad"]["faces"], 16);
   EXPECT_EQ(report["valid"], true);
@@ -85,10 +96,9 @@ TEST_F(CadCli, ATorusOfBlocksFromDataIsMeshedThroughItsHandle) {
 
 TEST_F(CadCli, RecipeAndTriangleAlgorithmCanBeChosen) {
   STCWEAVE_SKIP_WITHOUT_GMSH();
-  const auto r = run_cli("mesh " + data("plate_hole_blocks.step") + " -o " + at("p.vtk") +
-                         " --size 0.5 --cad-recipe triangle-split --cad-triangles 6 "
-                         "--no-untangle --report " +
-                         at("p.json"));
+  const auto [r, report] =
+      mesh(data("plate_hole_blocks.step"), "p",
+           "--size 0.5 --cad-recipe triangle-split --cad-triangles 6 --no-untangle");
   // A triangle-split surface of a solid with a handle: no disc cut of it is loop-clean, so
   // it is refused (exit 2) with the reason, or woven; either way the recipe was the one asked.
   EXPECT_TRUE(r.code == 0 || r.code == 2) << r.out;
@@ -96,6 +106,80 @@ TEST_F(CadCli, RecipeAndTriangleAlgorithmCanBeChosen) {
   EXPECT_THAT(r.out, HasSubstr("asked for"));
   const auto bad = run_cli("mesh " + data("plate_hole_blocks.step") + " -o " + at("q.vtk") +
                            " --cad-triangles 8");
+  EXPECT_EQ(bad.code, 1) << bad.out;
+}
+
+TEST_F(CadCli, AnIgesBoxIsSewnIntoASolidAndMeshedStructured) {
+  STCWEAVE_SKIP_WITHOUT_GMSH();
+  // Both IGES extensions; the file holds six faces and no solid, as IGES files usually do.
+  for (const char* name : {"box.igs", "box.iges"}) {
+    stcweave::test::write_iges(at(name), stcweave::test::iges_box_faces(1, 2, 1));
+    const auto [r, report] = mesh(at(name), name, "--size 0.25");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_THAT(r.out, HasSubstr("transfinite surface"));
+    EXPECT_EQ(report["cad"]["format"], "iges");
+    EXPECT_EQ(report["cad"]["faces"], 6);
+    EXPECT_THAT(report["cad"]["warnings"].dump(), HasSubstr("sewn into 1 solid"));
+    EXPECT_LT(report["cad"]["max_cad_distance"].get<double>(), 1e-7);
+    EXPECT_EQ(report["hexes"], 4 * 8 * 4);  // the structured 4 x 8 x 4 box
+    EXPECT_EQ(report["valid"], true);
+    EXPECT_DOUBLE_EQ(report["quality"]["min_scaled_jacobian"].get<double>(), 1.0);
+    const auto check = run_cli("check " + at(std::string(name) + ".vtk"));
+    EXPECT_EQ(check.code, 0) << check.out;
+  }
+}
+
+TEST_F(CadCli, AnIgesShellWithAFaceMissingOrGarbageExitsTwo) {
+  STCWEAVE_SKIP_WITHOUT_GMSH();
+  std::vector<stcweave::test::IgesFace> five = stcweave::test::iges_box_faces(1, 1, 1);
+  five.pop_back();
+  stcweave::test::write_iges(at("open.igs"), five);
+  const auto [open, none] = mesh(at("open.igs"), "open");
+  EXPECT_EQ(open.code, 2) << open.out;
+  EXPECT_THAT(open.out, HasSubstr("not a closed solid: it holds 5 faces"));
+  EXPECT_FALSE(fs::exists(at("open.vtk")));
+  {
+    std::ofstream out(at("junk.iges"));
+    out << "this is not IGES\n";
+  }
+  const auto [junk, nothing] = mesh(at("junk.iges"), "junk");
+  EXPECT_EQ(junk.code, 2) << junk.out;
+  // OpenCASCADE's IGES reader reads nothing from it without an error: refused as empty.
+  EXPECT_THAT(junk.out, HasSubstr("junk.iges: holds no shape at all"));
+  EXPECT_FALSE(fs::exists(at("junk.vtk")));
+}
+
+TEST_F(CadCli, ACylinderIsSplitIntoAnOGridUnlessToldNot) {
+  STCWEAVE_SKIP_WITHOUT_GMSH();
+  // The cylinder's axis runs from (0.2, 0.1, 0) along (1, 2, 2) / 3: the blocks must follow it.
+  const auto [r, report] =
+      mesh(data("cylinder_tilted.step"), "c", "--size 0.25 --surface-out " + at("c.obj"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("transfinite surface"));
+  EXPECT_THAT(r.out, HasSubstr("O-grid of 5 blocks"));
+  EXPECT_THAT(report["cad"]["split"].get<std::string>(), HasSubstr("O-grid"));
+  EXPECT_EQ(report["cad"]["faces"], 14);
+  EXPECT_EQ(report["valid"], true);
+  EXPECT_EQ(report["quality"]["inverted"], 0);
+  // Every node of the surface woven lies on the file's cylinder.
+  const stcweave::primal::MeshFile surface = stcweave::primal::read_mesh(at("c.obj"));
+  const Eigen::Vector3d origin(0.2, 0.1, 0.0);
+  const Eigen::Vector3d axis = Eigen::Vector3d(1, 2, 2) / 3.0;
+  double worst = 0.0;
+  for (Eigen::Index i = 0; i < surface.points.rows(); ++i) {
+    const Eigen::Vector3d d = surface.points.row(i).transpose() - origin;
+    const double t = d.dot(axis);
+    const Eigen::Vector3d local((d - t * axis).norm(), 0.0, t);
+    worst = std::max(worst, stcweave::test::cylinder_distance(local, 0.5, 1.0));
+  }
+  EXPECT_GT(surface.points.rows(), 0);
+  EXPECT_LT(worst, 1e-9);
+  const auto [off, report_off] =
+      mesh(data("cylinder_tilted.step"), "off", "--size 0.25 --no-cad-split --no-untangle");
+  ASSERT_EQ(off.code, 0) << off.out;
+  EXPECT_THAT(off.out, HasSubstr("triangle-split surface"));
+  EXPECT_EQ(report_off["cad"]["split"], "");
+  const auto bad = run_cli("mesh " + data("lblock.obj") + " -o " + at("x.vtk") + " --no-cad-split");
   EXPECT_EQ(bad.code, 1) << bad.out;
 }
 

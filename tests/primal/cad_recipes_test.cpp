@@ -76,7 +76,8 @@ TEST(CadRecipes, OneSolidTorusHasNoFourCorneredFaceSoItIsSplit) {
 
 TEST(CadRecipes, LBlockIsMixedAndLoopClean) {
   STCWEAVE_SKIP_WITHOUT_GMSH();
-  const CadSurface cad = cad_surface({CadPrimitive::Kind::LBlock, 2, 2, 1}, 0.25);
+  const CadSurface cad =
+      cad_surface({CadPrimitive::Kind::LBlock, 2, 2, 1}, 0.25, CadRecipe::Auto, /*split=*/false);
   EXPECT_EQ(cad.record.recipe, CadRecipe::Mixed);
   EXPECT_EQ(cad.record.faces, 8u);
   EXPECT_EQ(cad.record.structured_faces, 6u);  // all but the two L-shaped faces
@@ -109,7 +110,7 @@ TEST(CadRecipes, EachRecipeCanStillBeAskedFor) {
 TEST(CadRecipes, TheTriangleAlgorithmIsAnOptionAndOthersAreRefused) {
   STCWEAVE_SKIP_WITHOUT_GMSH();
   const CadPrimitive sphere{CadPrimitive::Kind::Sphere, 0.5};
-  CadOptions options = test::cad_options(0.25);
+  CadOptions options = test::cad_options(0.25, CadRecipe::Auto, /*split=*/false);
   for (const int algorithm : {1, 5, 6}) {
     options.triangle_algorithm = algorithm;
     const CadSurface cad = mesh_cad_surface(sphere, options);

@@ -96,9 +96,10 @@ TEST(Cad, BoxIsTransfiniteAndWeavesToItsStructuredHexes) {
 
 TEST(Cad, CylinderIsSplitFromTrianglesAndItsBoundaryNodesLieOnIt) {
   STCWEAVE_SKIP_WITHOUT_GMSH();
-  const CadSurface cad =
-      cad_surface(CadPrimitive{CadPrimitive::Kind::Cylinder, 0.5, 1.0, 1.0}, 0.25);
+  const CadSurface cad = cad_surface(CadPrimitive{CadPrimitive::Kind::Cylinder, 0.5, 1.0, 1.0},
+                                     0.25, CadRecipe::Auto, /*split=*/false);
   EXPECT_EQ(cad.record.recipe, CadRecipe::TriangleSplit);
+  EXPECT_EQ(cad.record.split, "");
   EXPECT_THAT(cad.record.reason, HasSubstr("not transfinite"));
   EXPECT_EQ(cad.record.faces, 3u);
   EXPECT_GT(cad.record.triangles, 0u);
@@ -108,20 +109,15 @@ TEST(Cad, CylinderIsSplitFromTrianglesAndItsBoundaryNodesLieOnIt) {
   const MeshResult r = mesh_cad(cad, false);
   EXPECT_TRUE(r.validation.valid) << r.validation.summary();
   EXPECT_GT(r.mesh.complex.hexes.size(), 0u);
-  const double d = max_boundary_distance(r, [](const Eigen::Vector3d& p) {
-    const double radial = std::hypot(p.x(), p.y());
-    const double to_side =
-        std::abs(radial - 0.5) + std::max(0.0, -p.z()) + std::max(0.0, p.z() - 1.0);
-    const double to_caps =
-        std::min(std::abs(p.z()), std::abs(p.z() - 1.0)) + std::max(0.0, radial - 0.5);
-    return std::min(to_side, to_caps);
-  });
+  const double d = max_boundary_distance(
+      r, [](const Eigen::Vector3d& p) { return test::cylinder_distance(p, 0.5, 1.0); });
   EXPECT_LT(d, 1e-9);
 }
 
 TEST(Cad, SphereNodesLieOnTheSphere) {
   STCWEAVE_SKIP_WITHOUT_GMSH();
-  const CadSurface cad = cad_surface(CadPrimitive{CadPrimitive::Kind::Sphere, 0.5}, 0.35);
+  const CadSurface cad =
+      cad_surface(CadPrimitive{CadPrimitive::Kind::Sphere, 0.5}, 0.35, CadRecipe::Auto, false);
   EXPECT_EQ(cad.record.recipe, CadRecipe::TriangleSplit);
   const MeshResult r = mesh_cad(cad, true);
   EXPECT_TRUE(r.validation.valid) << r.validation.summary();
@@ -154,10 +150,11 @@ TEST(Cad, LBlockBuiltOfThreeBlocksIsTransfiniteAndStructured) {
   EXPECT_NEAR(r.quality.min_scaled_jacobian, 1.0, 1e-9);
 }
 
-TEST(Cad, TransfiniteOnACylinderIsRefusedNamingTheFace) {
+TEST(Cad, TransfiniteOnAnUnsplitCylinderIsRefusedNamingTheFace) {
   STCWEAVE_SKIP_WITHOUT_GMSH();
   CadOptions options;
   options.recipe = CadRecipe::Transfinite;
+  options.split = false;
   try {
     (void)mesh_cad_surface(CadPrimitive{CadPrimitive::Kind::Cylinder, 0.5, 1.0}, options);
     FAIL() << "expected Unsupported";

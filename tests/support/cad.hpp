@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <set>
 #include <string>
@@ -27,19 +28,32 @@ inline std::string repo_data(const std::string& name) {
   return std::string(STCWEAVE_SOURCE_DIR) + "/data/" + name;
 }
 
-/// The CAD options of a test: target size `size`, recipe `recipe`, the rest defaults.
+/// The CAD options of a test: target size `size`, recipe `recipe`, splitting into blocks
+/// (`CadOptions::split`) on or off, the rest defaults.
 inline primal::CadOptions cad_options(double size,
-                                      primal::CadRecipe recipe = primal::CadRecipe::Auto) {
+                                      primal::CadRecipe recipe = primal::CadRecipe::Auto,
+                                      bool split = true) {
   primal::CadOptions options;
   options.size = size;
   options.recipe = recipe;
+  options.split = split;
   return options;
 }
 
 /// A primitive's quad surface at `size` with `recipe`.
 inline primal::CadSurface cad_surface(const primal::CadPrimitive& primitive, double size,
-                                      primal::CadRecipe recipe = primal::CadRecipe::Auto) {
-  return primal::mesh_cad_surface(primitive, cad_options(size, recipe));
+                                      primal::CadRecipe recipe = primal::CadRecipe::Auto,
+                                      bool split = true) {
+  return primal::mesh_cad_surface(primitive, cad_options(size, recipe, split));
+}
+
+/// Distance from `p` to the boundary of the cylinder of radius `r` and height `h` along z
+/// from the origin.
+inline double cylinder_distance(const Eigen::Vector3d& p, double r, double h) {
+  const double radial = std::hypot(p.x(), p.y());
+  const double to_side = std::abs(radial - r) + std::max(0.0, -p.z()) + std::max(0.0, p.z() - h);
+  const double to_caps = std::min(std::abs(p.z()), std::abs(p.z() - h)) + std::max(0.0, radial - r);
+  return std::min(to_side, to_caps);
 }
 
 /// The whole pipeline on a CAD surface (untangling on or off: it is slow on the hexes of

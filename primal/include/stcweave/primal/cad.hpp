@@ -80,6 +80,13 @@ struct CadOptions {
   /// (`General.Terminal` 0, its messages go to its logger) and what OpenCASCADE prints is
   /// captured, the errors among them ending up in the exceptions' messages.
   bool verbose = false;
+  /// Before meshing, split a recognised solid into blocks whose faces all have four corners,
+  /// so that it takes the transfinite recipe (docs/cad.md, "Splitting into blocks"): a right
+  /// circular cylinder into an O-grid of 5 blocks, a sphere into a cubed sphere of 7, a solid
+  /// of planar faces and straight edges by the axis planes through its corners (kept only
+  /// when every face of the blocks then has four corners). The surface keeps the solid's
+  /// geometry. Not applied with `CadRecipe::TriangleSplit`; on by default.
+  bool split = true;
 };
 
 /// What the CAD front end did: enough to re-run it and to judge the surface.
@@ -89,14 +96,16 @@ struct CadRecord {
   std::string gmsh_version;            ///< of the Gmsh library linked in
   CadRecipe recipe = CadRecipe::Auto;  ///< the recipe used (never `Auto`)
   std::string reason;                  ///< why this recipe (e.g. "face 3 has 6 corners")
-  double size = 0.0;                   ///< the target edge length used
-  std::size_t volumes = 0;             ///< solids in the file
-  std::size_t faces = 0;               ///< CAD faces of the solids' boundary
-  std::size_t curves = 0;              ///< CAD curves of those faces
-  std::size_t triangles = 0;           ///< triangles before the split (`TriangleSplit`: quads / 3)
-  std::size_t structured_faces = 0;    ///< CAD faces meshed block-structured
-  std::size_t quads = 0;               ///< quads of the surface made
-  std::size_t nodes = 0;               ///< nodes of the surface made
+  /// How the solid was split into blocks before meshing (`CadOptions::split`), "" when not.
+  std::string split;
+  double size = 0.0;                 ///< the target edge length used
+  std::size_t volumes = 0;           ///< solids in the file
+  std::size_t faces = 0;             ///< CAD faces of the solids' boundary
+  std::size_t curves = 0;            ///< CAD curves of those faces
+  std::size_t triangles = 0;         ///< triangles before the split (`TriangleSplit`: quads / 3)
+  std::size_t structured_faces = 0;  ///< CAD faces meshed block-structured
+  std::size_t quads = 0;             ///< quads of the surface made
+  std::size_t nodes = 0;             ///< nodes of the surface made
   /// Largest distance from a surface node to the CAD entity (face, curve or point) Gmsh
   /// placed it on, measured with Gmsh's closest-point projection.
   double max_cad_distance = 0.0;

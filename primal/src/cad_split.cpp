@@ -1,0 +1,433 @@
+// Compiled with Gmsh only (STCWEAVE_HAVE_GMSH, set on this file and cad.cpp by CMake).
+#if STCWEAVE_HAVE_GMSH
+#include "cad_split.hpp"
+
+#include <gmsh.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <exception>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "stcweave/stc/errors.hpp"
+
+namespace stcweave::primal::cad_detail {
+namespace {
+
+namespace occ = gmsh::model::occ;
+using Vec = std::array<double, 3>;
+
+const double kPi = std::acos(-1.0);
+
+/// What a Gmsh call threw, as text (Gmsh 4.8 throws std::string).
+std::string reason_of_current_exception() {
+  try {
+    throw;
+  } catch (const std::string& s) {
+    return s;
+  } catch (const std::exception& e) {
+    return e.what();
+  } catch (...) {
+    return "unknown Gmsh error";
+  }
+}
+
+Vec sub(const Vec& a, const Vec& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+double norm(const Vec& a) {
+  return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+}
+
+bool near(double value, double expected, double relative) {
+  return std::abs(value - expected) <= relative * std::max(std::abs(expected), 1e-300);
+}
+
+Vec centre_of(int dim, int tag) {
+  Vec c{};
+  occ::getCenterOfMass(dim, tag, c[0], c[1], c[2]);
+  return c;
+}
+
+double mass_of(int dim, int tag) {
+  double m = 0.0;
+  occ::getMass(dim, tag, m);
+  return m;
+}
+
+std::set<std::pair<int, int> > occ_entities() {
+  gmsh::vectorpair all;
+  occ::getEntities(all, -1);
+  return {all.begin(), all.end()};
+}
+
+/// Removes every OpenCASCADE entity made since `before` (volumes first), synchronised.
+void remove_new(const std::set<std::pair<int, int> >& before) {
+  gmsh::vectorpair all;
+  occ::getEntities(all, -1);
+  for (int dim = 3; dim >= 0; --dim) {
+    gmsh::vectorpair made;
+    for (const auto& dt : all)
+      if (dt.first == dim && before.count(dt) == 0) made.push_back(dt);
+    if (!made.empty()) occ::remove(made, false);
+  }
+  occ::synchronize();
+}
+
+/// The faces of the boundary of the union of `volumes` (faces between two of them left out).
+std::vector<int> union_faces(const gmsh::vectorpair& volumes) {
+  gmsh::vectorpair boundary;
+  gmsh::model::getBoundary(volumes, boundary, true, false, false);
+  std::vector<int> faces;
+  for (const auto& [d, t] : boundary) faces.push_back(std::abs(t));
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  return faces;
+}
+
+gmsh::vectorpair volumes_of(const gmsh::vectorpair& dim_tags) {
+  gmsh::vectorpair out;
+  for (const auto& dt : dim_tags)
+    if (dt.first == 3) out.push_back(dt);
+  return out;
+}
+
+/// An O-grid cylinder of radius `r` and height `h` along z from the origin: a square core of
+/// half side r / 2.5 and four ring pieces (a core side, two diagonal cuts, a quarter of the
+/// circle), extruded and made conforming. Returns the blocks.
+gmsh::vectorpair add_ogrid_cylinder(double r, double h) {
+  const double half = r / 2.5;
+  const double diagonal = r / std::sqrt(2.0);
+  const std::array<std::array<double, 2>, 4> directions = {
+      {{1.0, -1.0}, {1.0, 1.0}, {-1.0, 1.0}, {-1.0, -1.0}}};
+  const int centre = occ::addPoint(0, 0, 0);
+  std::array<int, 4> core{};
+  std::array<int, 4> rim{};
+  for (std::size_t k = 0; k < 4; ++k) {
+    core[k] = occ::addPoint(half * directions[k][0], half * directions[k][1], 0);
+    rim[k] = occ::addPoint(diagonal * directions[k][0], diagonal * directions[k][1], 0);
+  }
+  std::array<int, 4> side{};
+  std::array<int, 4> cut{};
+  std::array<int, 4> arc{};
+  for (std::size_t k = 0; k < 4; ++k) {
+    const std::size_t n = (k + 1) % 4;
+    side[k] = occ::addLine(core[k], core[n]);
+    cut[k] = occ::addLine(core[k], rim[k]);
+    arc[k] = occ::addCircleArc(rim[k], centre, rim[n]);
+  }
+  gmsh::vectorpair section;
+  section.emplace_back(
+      2, occ::addPlaneSurface({occ::addCurveLoop({side[0], side[1], side[2], side[3]})}));
+  for (std::size_t k = 0; k < 4; ++k) {
+    const std::size_t n = (k + 1) % 4;
+    section.emplace_back(
+        2, occ::addPlaneSurface({occ::addCurveLoop({side[k], cut[n], -arc[k], -cut[k]})}));
+  }
+  gmsh::vectorpair extruded;
+  occ::extrude(section, 0, 0, h, extruded);
+  const gmsh::vectorpair blocks = volumes_of(extruded);
+  gmsh::vectorpair out;
+  std::vector<gmsh::vectorpair> map;
+  occ::fragment({blocks.front()}, gmsh::vectorpair(blocks.begin() + 1, blocks.end()), out, map);
+  return volumes_of(out);
+}
+
+/// A cubed sphere of radius `r` at the origin: a core cube of half side r / 2.5 and six
+/// pieces, each the ball cut by the pyramid from the centre through one face of the cube.
+/// Each piece gets its own ball, turned so that the sphere's poles and seam (OpenCASCADE
+/// puts the poles on z and the seam through +x) fall outside it: otherwise the seam stays
+/// in the piece's face, which then has more than four curve uses.
+gmsh::vectorpair add_cubed_sphere(double r) {
+  const double h = r / 2.5;
+  const double big = 2.0 * r;
+  const int apex = occ::addPoint(0, 0, 0);
+  std::array<int, 4> base{};
+  const std::array<std::array<double, 2>, 4> uv = {
+      {{-1.0, -1.0}, {1.0, -1.0}, {1.0, 1.0}, {-1.0, 1.0}}};
+  for (std::size_t k = 0; k < 4; ++k) base[k] = occ::addPoint(big * uv[k][0], big * uv[k][1], big);
+  std::array<int, 4> rim{};
+  std::array<int, 4> spoke{};
+  for (std::size_t k = 0; k < 4; ++k) {
+    rim[k] = occ::addLine(base[k], base[(k + 1) % 4]);
+    spoke[k] = occ::addLine(apex, base[k]);
+  }
+  std::vector<int> faces = {
+      occ::addPlaneSurface({occ::addCurveLoop({rim[0], rim[1], rim[2], rim[3]})})};
+  for (std::size_t k = 0; k < 4; ++k) {
+    faces.push_back(
+        occ::addPlaneSurface({occ::addCurveLoop({spoke[k], rim[k], -spoke[(k + 1) % 4]})}));
+  }
+  const std::pair<int, int> pyramid{3, occ::addVolume({occ::addSurfaceLoop(faces)})};
+  // The six directions: +z, quarter turns about x and y, the half turn about x.
+  struct Turn {
+    double x, y, z, angle;
+  };
+  const std::array<Turn, 6> turns = {{{0, 0, 1, 0.0},
+                                      {1, 0, 0, kPi / 2},
+                                      {1, 0, 0, -kPi / 2},
+                                      {0, 1, 0, kPi / 2},
+                                      {0, 1, 0, -kPi / 2},
+                                      {1, 0, 0, kPi}}};
+  gmsh::vectorpair pieces;
+  for (const Turn& t : turns) {
+    gmsh::vectorpair p;
+    occ::copy({pyramid}, p);
+    const int ball = occ::addSphere(0, 0, 0, r);
+    // Poles on x, seam through -z: the +z piece holds neither.
+    occ::rotate({{3, ball}}, 0, 0, 0, 0, 1, 0, kPi / 2);
+    gmsh::vectorpair both = p;
+    both.emplace_back(3, ball);
+    if (t.angle != 0.0) occ::rotate(both, 0, 0, 0, t.x, t.y, t.z, t.angle);
+    gmsh::vectorpair out;
+    std::vector<gmsh::vectorpair> map;
+    occ::intersect({{3, ball}}, p, out, map);
+    const gmsh::vectorpair v = volumes_of(out);
+    pieces.insert(pieces.end(), v.begin(), v.end());
+  }
+  occ::remove({pyramid}, true);
+  const int core = occ::addBox(-h, -h, -h, 2 * h, 2 * h, 2 * h);
+  gmsh::vectorpair outer;
+  std::vector<gmsh::vectorpair> map;
+  occ::cut(pieces, {{3, core}}, outer, map, -1, true, false);
+  gmsh::vectorpair out;
+  occ::fragment({{3, core}}, volumes_of(outer), out, map);
+  return volumes_of(out);
+}
+
+/// Turns and moves `blocks` (built along z from the origin) so that z goes along `axis`
+/// (unit) and the origin to `origin`.
+void place(const gmsh::vectorpair& blocks, const Vec& axis, const Vec& origin) {
+  const Vec turn = {-axis[1], axis[0], 0.0};  // z x axis
+  const double s = norm(turn);
+  const double angle = std::atan2(s, axis[2]);
+  if (s > 1e-12) {
+    occ::rotate(blocks, 0, 0, 0, turn[0], turn[1], turn[2], angle);
+  } else if (axis[2] < 0) {
+    occ::rotate(blocks, 0, 0, 0, 1, 0, 0, kPi);
+  }
+  occ::translate(blocks, origin[0], origin[1], origin[2]);
+}
+
+/// Gmsh's type names of `faces`, sorted.
+std::vector<std::string> types_of(int dim, const std::vector<int>& tags) {
+  std::vector<std::string> types;
+  for (const int t : tags) {
+    std::string type;
+    gmsh::model::getType(dim, t, type);
+    types.push_back(type);
+  }
+  std::sort(types.begin(), types.end());
+  return types;
+}
+
+/// The parameters of a right circular cylinder when the solid is one: base centre, unit
+/// axis, radius and height. Checked on the masses: the two discs have equal areas pi r^2,
+/// the side 2 pi r h, the volume pi r^2 h (1e-6 relative).
+bool is_cylinder(int volume, const std::vector<int>& faces, Vec& base, Vec& axis, double& r,
+                 double& h) {
+  if (faces.size() != 3) return false;
+  if (types_of(2, faces) != std::vector<std::string>{"Cylinder", "Plane", "Plane"}) return false;
+  std::vector<int> discs;
+  int side = 0;
+  for (const int f : faces) {
+    std::string type;
+    gmsh::model::getType(2, f, type);
+    if (type == "Plane") {
+      discs.push_back(f);
+    } else {
+      side = f;
+    }
+  }
+  const double a0 = mass_of(2, discs[0]);
+  const double a1 = mass_of(2, discs[1]);
+  if (!near(a1, a0, 1e-6)) return false;
+  r = std::sqrt(a0 / kPi);
+  base = centre_of(2, discs[0]);
+  const Vec top = centre_of(2, discs[1]);
+  const Vec d = sub(top, base);
+  h = norm(d);
+  if (!(h > 0.0) || !(r > 0.0)) return false;
+  axis = {d[0] / h, d[1] / h, d[2] / h};
+  return near(mass_of(2, side), 2 * kPi * r * h, 1e-6) &&
+         near(mass_of(3, volume), kPi * r * r * h, 1e-6);
+}
+
+/// Centre and radius of a sphere when the solid is one (one spherical face; area 4 pi r^2,
+/// volume 4/3 pi r^3).
+bool is_sphere(int volume, const std::vector<int>& faces, Vec& centre, double& r) {
+  if (faces.size() != 1 || types_of(2, faces) != std::vector<std::string>{"Sphere"}) return false;
+  r = std::sqrt(mass_of(2, faces[0]) / (4 * kPi));
+  centre = centre_of(3, volume);
+  return r > 0.0 && near(mass_of(3, volume), 4.0 / 3.0 * kPi * r * r * r, 1e-6);
+}
+
+/// A planar quadrilateral through the four corners.
+std::pair<int, int> add_quad(const std::array<Vec, 4>& corners) {
+  std::array<int, 4> p{};
+  for (std::size_t k = 0; k < 4; ++k)
+    p[k] = occ::addPoint(corners[k][0], corners[k][1], corners[k][2]);
+  std::vector<int> lines;
+  for (std::size_t k = 0; k < 4; ++k) lines.push_back(occ::addLine(p[k], p[(k + 1) % 4]));
+  return {2, occ::addPlaneSurface({occ::addCurveLoop(lines)})};
+}
+
+/// Cuts of a solid of planes and lines by the axis planes through its corners; "" and
+/// `dropped` set when it does not give blocks of four-cornered faces.
+std::string cut_by_corner_planes(const gmsh::vectorpair& volumes, const std::vector<int>& faces,
+                                 double diagonal, const std::function<bool(int)>& four_cornered,
+                                 std::string& dropped) {
+  for (const std::string& t : types_of(2, faces))
+    if (t != "Plane") return "";
+  {
+    gmsh::vectorpair curves;
+    gmsh::model::getBoundary(volumes, curves, false, false, true);
+    std::vector<int> curve_tags;
+    for (const auto& [d, t] : curves)
+      if (d == 1) curve_tags.push_back(std::abs(t));
+    for (const std::string& t : types_of(1, curve_tags))
+      if (t != "Line") return "";
+  }
+  const double tol = 1e-6 * diagonal;
+  Vec lo = {1e300, 1e300, 1e300};
+  Vec hi = {-1e300, -1e300, -1e300};
+  std::array<std::vector<double>, 3> at;
+  gmsh::vectorpair points;
+  gmsh::model::getBoundary(volumes, points, false, false, true);
+  std::vector<Vec> xyz;
+  for (const auto& [d, t] : points) {
+    if (d != 0) continue;
+    std::vector<double> p;
+    gmsh::model::getValue(0, std::abs(t), {}, p);
+    xyz.push_back({p[0], p[1], p[2]});
+    for (std::size_t k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], p[k]);
+      hi[k] = std::max(hi[k], p[k]);
+    }
+  }
+  std::size_t planes = 0;
+  for (std::size_t k = 0; k < 3; ++k) {
+    for (const Vec& p : xyz)
+      if (p[k] > lo[k] + tol && p[k] < hi[k] - tol) at[k].push_back(p[k]);
+    std::sort(at[k].begin(), at[k].end());
+    at[k].erase(
+        std::unique(at[k].begin(), at[k].end(), [tol](double a, double b) { return b - a <= tol; }),
+        at[k].end());
+    planes += at[k].size();
+  }
+  if (planes == 0) return "";
+  if (planes > 12) {
+    dropped = std::to_string(planes) + " axis planes through its corners (more than 12)";
+    return "";
+  }
+  const auto before = occ_entities();
+  const double m = 0.1 * diagonal;
+  gmsh::vectorpair copy;
+  occ::copy(volumes, copy);
+  gmsh::vectorpair tools;
+  for (std::size_t k = 0; k < 3; ++k) {
+    const std::size_t u = (k + 1) % 3;
+    const std::size_t w = (k + 2) % 3;
+    for (const double v : at[k]) {
+      std::array<Vec, 4> c{};
+      const std::array<std::array<double, 2>, 4> uw = {{{lo[u] - m, lo[w] - m},
+                                                        {hi[u] + m, lo[w] - m},
+                                                        {hi[u] + m, hi[w] + m},
+                                                        {lo[u] - m, hi[w] + m}}};
+      for (std::size_t i = 0; i < 4; ++i) {
+        c[i][k] = v;
+        c[i][u] = uw[i][0];
+        c[i][w] = uw[i][1];
+      }
+      tools.push_back(add_quad(c));
+    }
+  }
+  gmsh::vectorpair out;
+  std::vector<gmsh::vectorpair> map;
+  occ::fragment(copy, tools, out, map);
+  occ::synchronize();
+  // The pieces of the planes outside the solid bound no volume: removed.
+  gmsh::vectorpair free_faces;
+  for (const auto& dt : out) {
+    if (dt.first != 2) continue;
+    std::vector<int> up;
+    std::vector<int> down;
+    gmsh::model::getAdjacencies(2, dt.second, up, down);
+    if (up.empty()) free_faces.push_back(dt);
+  }
+  if (!free_faces.empty()) occ::remove(free_faces, true);
+  occ::synchronize();
+  const gmsh::vectorpair blocks = volumes_of(out);
+  const std::vector<int> block_faces = union_faces(blocks);
+  const auto bad = std::find_if(block_faces.begin(), block_faces.end(),
+                                [&](int f) { return !four_cornered(f); });
+  if (bad != block_faces.end()) {
+    dropped = "cut by " + std::to_string(planes) +
+              " axis planes through its corners, but a face of the blocks still has not 4 "
+              "corners";
+    remove_new(before);
+    return "";
+  }
+  occ::remove(volumes, true);
+  occ::synchronize();
+  return "a solid of planar faces, cut by " + std::to_string(planes) +
+         " axis planes through its corners into " + std::to_string(blocks.size()) + " blocks";
+}
+
+}  // namespace
+
+SplitResult split_into_blocks(const std::vector<std::pair<int, int> >& volumes, double diagonal,
+                              const std::function<bool(int)>& four_cornered) {
+  SplitResult result;
+  const std::vector<int> faces = union_faces(volumes);
+  if (std::all_of(faces.begin(), faces.end(), four_cornered)) return result;
+  const auto before = occ_entities();
+  std::string what;
+  try {
+    Vec base{};
+    Vec axis{};
+    double r = 0.0;
+    double h = 0.0;
+    gmsh::vectorpair blocks;
+    if (volumes.size() == 1 && is_cylinder(volumes[0].second, faces, base, axis, r, h)) {
+      what = "a cylinder, split as an O-grid of 5 blocks";
+      blocks = add_ogrid_cylinder(r, h);
+      place(blocks, axis, base);
+    } else if (volumes.size() == 1 && is_sphere(volumes[0].second, faces, base, r)) {
+      what = "a sphere, split as a cubed sphere of 7 blocks";
+      blocks = add_cubed_sphere(r);
+      occ::translate(blocks, base[0], base[1], base[2]);
+    } else {
+      result.how = cut_by_corner_planes(volumes, faces, diagonal, four_cornered, result.dropped);
+      return result;
+    }
+    occ::synchronize();
+    const std::vector<int> block_faces = union_faces(blocks);
+    if (!std::all_of(block_faces.begin(), block_faces.end(), four_cornered)) {
+      result.dropped = what + ", but a face of the blocks has not 4 corners";
+      remove_new(before);
+      return result;
+    }
+    occ::remove(gmsh::vectorpair(volumes.begin(), volumes.end()), true);
+    occ::synchronize();
+    result.how = what;
+  } catch (...) {
+    result.dropped = (what.empty() ? std::string("splitting into blocks") : what) +
+                     " failed in Gmsh: " + reason_of_current_exception();
+    try {
+      remove_new(before);
+    } catch (...) {
+      throw InternalError("the CAD model could not be restored after " + result.dropped + ": " +
+                          reason_of_current_exception() + "; this is a bug");
+    }
+  }
+  return result;
+}
+
+}  // namespace stcweave::primal::cad_detail
+
+#endif

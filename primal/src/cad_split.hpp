@@ -1,0 +1,38 @@
+#pragma once
+/// \file
+/// Private to the CAD front end (compiled with Gmsh only): splitting a solid into blocks
+/// whose faces have four corners before its surface is meshed, so that more (or all) of its
+/// faces take the transfinite recipe. Works on Gmsh's current model (OpenCASCADE kernel,
+/// synchronised); see docs/cad.md, "Splitting into blocks".
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace stcweave::primal::cad_detail {
+
+/// What `split_into_blocks` did.
+struct SplitResult {
+  /// How the solid was split ("" when it was not), e.g. "a cylinder, split as an O-grid of
+  /// 5 blocks".
+  std::string how;
+  /// Why it was not split, when a split was tried and dropped (for the record's warnings).
+  std::string dropped;
+};
+
+/// Recognises the model's solid and replaces it by blocks of the same shape whose faces all
+/// have four corners (`four_cornered(face tag)` says whether a face has):
+/// - one right circular cylinder (a cylindrical face and two planar discs): an O-grid of five
+///   blocks (a square core and four ring pieces) along its axis;
+/// - one sphere: a cubed sphere of seven blocks (a core cube and six pieces, each with its own
+///   copy of the ball turned so that the sphere's poles and seam are outside the piece);
+/// - solids of planar faces and straight edges (`volumes` of them): cut by the planes
+///   perpendicular to x, y and z through its corners that cross it (at most 12 planes), kept
+///   only when every face of the union of the blocks has four corners.
+/// The model is left unchanged when no case applies or a case fails (Gmsh's reason is then
+/// in `dropped`). `diagonal` is the solid's bounding box diagonal (tolerances).
+[[nodiscard]] SplitResult split_into_blocks(const std::vector<std::pair<int, int> >& volumes,
+                                            double diagonal,
+                                            const std::function<bool(int)>& four_cornered);
+
+}  // namespace stcweave::primal::cad_detail
