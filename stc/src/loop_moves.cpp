@@ -78,9 +78,17 @@ struct State {
   std::size_t num_nodes = 0;
   std::size_t live = 0;
   Score score{};
+  Score rank{};  ///< the order a search keeps candidates in (the score, or `surgery_rank`)
   std::vector<std::int32_t> face_loop;  ///< 2 per slot, from the last evaluation
   std::vector<std::uint8_t> loop_self;  ///< per loop: crosses itself
 };
+
+/// The order of the surgery look-ahead: self-crossing quads first, then odd loops. A surgery
+/// that takes one crossing of an even loop apart leaves an odd loop (one crossing left), which
+/// the score ranks behind every front that keeps the even loop; this order keeps it.
+Score surgery_rank(const Score& s) {
+  return {std::get<1>(s), std::get<0>(s), std::get<2>(s), std::get<3>(s)};
+}
 
 int corner(const Quad& q, NodeId v) {
   for (int i = 0; i < 4; ++i)
@@ -484,12 +492,21 @@ class Search {
 
   /// The candidate fronts one move away from `s`, best first, at most `keep` of them.
   std::vector<State> successors(const State& s, std::size_t keep) {
+    return successors(s, keep, false, options_.max_candidates);
+  }
+
+  /// With `surgeries_only`: only the two surgeries (the moves that reconnect loops), seeded
+  /// at every face of a self-intersecting loop however far from its crossings, at most
+  /// `max_tried` evaluated, ranked by `surgery_rank` (self-crossing quads before odd loops).
+  std::vector<State> successors(const State& s, std::size_t keep, bool surgeries_only,
+                                std::size_t max_tried) {
     std::vector<State> best;
     std::vector<std::vector<Slot>> seen;
     std::size_t tried = 0;
     for (const Slot f : hot_faces(s, goal_)) {
-      if (tried >= options_.max_candidates || exhausted()) break;
+      if (tried >= max_tried || exhausted()) break;
       for (const Pattern& p : patterns()) {
+        if (surgeries_only && p.move != FrontMove::Surgery && p.move != FrontMove::Tube) continue;
         for (std::size_t seed = 0; seed < p.chosen.size(); ++seed) {
           for (int rot = 0; rot < 4; ++rot) {
             Candidate c;
@@ -503,12 +520,20 @@ class Search {
             if (s.live + 6 - 2 * p.chosen.size() > max_faces_) continue;
             State next = s;
             apply(next, c);
-            if (!seen_fronts_.insert(signature(next)).second) continue;
+            // The surgery look-ahead keeps its own record: the beam may have seen (and
+            // dropped, by its order) the very fronts it needs.
+            auto& seen_fronts = surgeries_only ? seen_surgery_fronts_ : seen_fronts_;
+            if (!seen_fronts.insert(signature(next)).second) continue;
             evaluate(next, goal_);
             next.moves.back().self_crossing_quads = self_crossings(next);
             ++tried;
             ++evaluations_;
             work_ += next.faces.size();
+            if (surgeries_only) {
+              next.rank = surgery_rank(next.score);
+            } else {
+              next.rank = next.score;
+            }
             insert(best, std::move(next), keep);
           }
         }
@@ -524,8 +549,8 @@ class Search {
 
  private:
   static void insert(std::vector<State>& best, State&& s, std::size_t keep) {
-    const auto pos = std::upper_bound(best.begin(), best.end(), s.score,
-                                      [](const Score& v, const State& b) { return v < b.score; });
+    const auto pos = std::upper_bound(best.begin(), best.end(), s.rank,
+                                      [](const Score& v, const State& b) { return v < b.rank; });
     if (static_cast<std::size_t>(pos - best.begin()) >= keep) return;
     best.insert(pos, std::move(s));
     if (best.size() > keep) best.pop_back();
@@ -537,6 +562,7 @@ class Search {
   std::size_t evaluations_ = 0;
   std::size_t work_ = 0;
   std::unordered_set<std::uint64_t> seen_fronts_;
+  std::unordered_set<std::uint64_t> seen_surgery_fronts_;
 };
 
 State initial_state(const QuadSurface& surface) {
@@ -662,6 +688,34 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
         improved = true;
       }
     }
+    if (!improved && goal == Goal::SimpleLoops && options.surgery_depth > 0) {
+      // The surgery look-ahead: sequences of surgeries anywhere on the self-intersecting
+      // loops, ranked so that taking one crossing apart counts as progress even when it
+      // leaves an odd loop for the next surgery to fix.
+      ++r.surgery_searches;
+      std::vector<State> surgeries =
+          search.successors(current, options.surgery_width, true, options.surgery_candidates);
+      for (std::size_t depth = 1; depth <= options.surgery_depth && !surgeries.empty(); ++depth) {
+        if (key(surgeries.front()) < key(current)) {
+          current = std::move(surgeries.front());
+          improved = true;
+          break;
+        }
+        if (depth == options.surgery_depth) break;
+        std::vector<State> next;
+        for (const State& s : surgeries) {
+          for (State& t :
+               search.successors(s, options.surgery_width, true, options.surgery_candidates)) {
+            const auto pos =
+                std::upper_bound(next.begin(), next.end(), t.rank,
+                                 [](const Score& v, const State& b) { return v < b.rank; });
+            next.insert(pos, std::move(t));
+            if (next.size() > options.surgery_width) next.pop_back();
+          }
+        }
+        surgeries = std::move(next);
+      }
+    }
     if (!improved && search.exhausted()) {
       stop = "evaluation bound (" + std::to_string(options.max_evaluations) + " moves or " +
              std::to_string(options.max_work) + " face evaluations) reached";
@@ -691,6 +745,7 @@ LoopMoveResult untangle_loops(const QuadSurface& surface, const LoopMoveOptions&
   r.self_crossing_quads_before = before;
   r.evaluations = stats.evaluations;
   r.beam_searches = stats.beam_searches;
+  r.surgery_searches = stats.surgery_searches;
   r.stop_reason = stats.stop_reason;
   return r;
 }
@@ -708,6 +763,7 @@ LoopMoveResult fill_front(const LoopMoveResult& start, const LoopMoveOptions& op
   r.self_crossing_quads_before = start.self_crossing_quads_before;
   r.evaluations = start.evaluations + stats.evaluations;
   r.beam_searches = start.beam_searches + stats.beam_searches;
+  r.surgery_searches = start.surgery_searches + stats.surgery_searches;
   r.stop_reason = stats.stop_reason;
   r.simple = current.live == 0;
   return r;

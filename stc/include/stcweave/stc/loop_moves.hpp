@@ -63,6 +63,13 @@ struct LoopMoveOptions {
   std::size_t small_front = 48;
   std::size_t small_beam_depth = 10;
   std::size_t small_beam_width = 48;
+  /// The surgery look-ahead, run when the beam finds nothing: sequences of up to
+  /// `surgery_depth` surgeries (U or tube) seeded at any face of a self-intersecting loop, at
+  /// most `surgery_candidates` evaluated per front, `surgery_width` fronts kept per level,
+  /// ranked by self-crossing quads before odd loops. 0: off.
+  std::size_t surgery_depth = 3;
+  std::size_t surgery_width = 16;
+  std::size_t surgery_candidates = 4000;
 };
 
 /// One move of the search, as applied.
@@ -93,6 +100,7 @@ struct LoopMoveResult {
   std::size_t self_crossing_quads_after = 0;
   std::size_t evaluations = 0;  ///< candidate moves evaluated
   std::size_t beam_searches = 0;
+  std::size_t surgery_searches = 0;  ///< surgery look-aheads run (the beam found nothing)
   /// True when no loop of `front` crosses itself.
   bool simple = false;
   /// Why the search stopped ("simple", or which bound).
