@@ -1,13 +1,15 @@
 // A weave that always completes (issue 11): the block recovery (WeaveOptions::block_recovery,
 // on by default) on every sphere quadrangulation of a closure enumerated in the test
 // (tests/weave/sphere_enum.hpp: from the cube by every node split and every cut in five, each
-// map once), the 12-quad case of the issue and the seeded family of sphere_quads.hpp, under
-// both rule sets. Every sphere quadrangulation with an even number of quads has a hex mesh,
-// so a weave that still throws here is a defect of the weaver, and fails the test.
+// map once; up to 18 quads by default, 20 on request), the 12-quad case of the issue and the seeded
+// family of sphere_quads.hpp, under both rule sets. Every sphere quadrangulation with an even
+// number of quads has a hex mesh, so a weave that still throws here is a defect of the weaver, and
+// fails the test.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
+#include <cstdlib>
 #include <iostream>
 #include <map>
 #include <string>
@@ -67,18 +69,18 @@ Outcome weave_both_ways(const stc::QuadSurface& s, RuleSet rules) {
 }
 
 const std::map<std::size_t, std::vector<stc::QuadSurface>>& closure() {
-  static const auto c = test::sphere_closure(16);
+  static const auto c = test::sphere_closure(18);
   return c;
 }
 
 TEST(SphereClosure, CountsAreThoseOfTheEnumeration) {
-  // Distinct maps (up to relabelling and rotation; mirror images count twice) with 6..16
+  // Distinct maps (up to relabelling and rotation; mirror images count twice) with 6..18
   // quads. Pinned so that a change of the generator is seen.
   std::map<std::size_t, std::size_t> counts;
   for (const auto& [n, shapes] : closure()) counts[n] = shapes.size();
-  const std::map<std::size_t, std::size_t> expected = {{6, 1},   {7, 0},    {8, 1},   {9, 1},
-                                                       {10, 4},  {11, 3},   {12, 16}, {13, 26},
-                                                       {14, 99}, {15, 256}, {16, 895}};
+  const std::map<std::size_t, std::size_t> expected = {
+      {6, 1},   {7, 0},   {8, 1},    {9, 1},    {10, 4},    {11, 3},   {12, 16},
+      {13, 26}, {14, 99}, {15, 256}, {16, 895}, {17, 2789}, {18, 9740}};
   for (const auto& [n, c] : counts) std::cout << "quads " << n << ": " << c << "\n";
   EXPECT_EQ(counts, expected);
 }
@@ -104,6 +106,7 @@ struct ClosureCase {
   std::size_t loop_clean;
   std::size_t blocked_reliable;
   std::size_t blocked_extended;
+  std::size_t extended_every = 1;  ///< under extended, every n-th loop-clean shape only
 };
 
 /// The quad count names a case (in gtest's and ctest's test names).
@@ -112,50 +115,83 @@ void PrintTo(const ClosureCase& c, std::ostream* os) {
   *os << c.quads << "_quads";
 }
 
+/// What the loop-clean shapes of one count gave under one rule set.
+struct Tally {
+  std::size_t shapes = 0;
+  std::size_t blocked = 0;                   ///< without recovery
+  std::size_t still = 0;                     ///< with it
+  std::vector<std::size_t> recovered_hexes;  ///< of the shapes it recovered, sorted
+};
+
+/// Weaves every `every`-th loop-clean shape of `shapes` (1: all) under `rules`, each without and
+/// with the recovery, certifying what completes.
+Tally weave_loop_clean(const std::vector<stc::QuadSurface>& shapes, RuleSet rules,
+                       std::size_t every) {
+  Tally t;
+  std::size_t index = 0;
+  for (const auto& s : shapes) {
+    if (stc::find_loops(s).num_self_intersecting() != 0) continue;
+    if (index++ % every != 0) continue;
+    ++t.shapes;
+    const Outcome o = weave_both_ways(s, rules);
+    t.blocked += o.blocked_before ? 1 : 0;
+    if (!o.completed) {
+      ++t.still;
+      std::cout << s.quads.size() << " quads, " << to_string(rules) << ", loop-clean shape "
+                << index - 1 << " still blocked: " << o.error.substr(0, 200) << "\n";
+    } else if (o.blocked_before) {
+      t.recovered_hexes.push_back(o.hexes);
+    }
+  }
+  std::sort(t.recovered_hexes.begin(), t.recovered_hexes.end());
+  const auto& h = t.recovered_hexes;
+  std::cout << (shapes.empty() ? 0 : shapes.front().quads.size()) << " quads, " << to_string(rules)
+            << ": " << t.shapes << " loop-clean shapes woven (every " << every
+            << "), blocked without recovery " << t.blocked << ", still blocked " << t.still
+            << ", recovered hexes max " << (h.empty() ? 0 : h.back()) << " median "
+            << (h.empty() ? 0 : h[h.size() / 2]) << "\n";
+  return t;
+}
+
 class EveryEvenSphere : public ::testing::TestWithParam<ClosureCase> {};
 
 TEST_P(EveryEvenSphere, WeavesUnderBothRuleSets) {
-  const std::size_t n = GetParam().quads;
-  std::size_t loop_clean = 0;
-  std::array<std::size_t, 2> still_blocked{};
-  for (RuleSet rules : {RuleSet::Reliable, RuleSet::Extended}) {
-    std::size_t shapes = 0;
-    std::size_t blocked = 0;
-    std::size_t completed = 0;
-    std::size_t max_hexes = 0;
-    std::size_t max_recoveries = 0;
-    for (const auto& s : closure().at(n)) {
-      if (stc::find_loops(s).num_self_intersecting() != 0) continue;
-      ++shapes;
-      const Outcome o = weave_both_ways(s, rules);
-      blocked += o.blocked_before ? 1 : 0;
-      completed += o.completed ? 1 : 0;
-      max_hexes = std::max(max_hexes, o.hexes);
-      max_recoveries = std::max(max_recoveries, o.recoveries);
-      if (!o.completed) {
-        ++still_blocked[rules == RuleSet::Reliable ? 0 : 1];
-        std::cout << to_string(rules) << ", shape " << shapes
-                  << " still blocked: " << o.error.substr(0, 200) << "\n";
-      }
-    }
-    loop_clean = shapes;
-    std::cout << n << " quads, " << to_string(rules) << ": " << shapes
-              << " loop-clean shapes, blocked without recovery " << blocked << ", completed "
-              << completed << ", max hexes " << max_hexes << ", max recoveries " << max_recoveries
-              << "\n";
-  }
-  EXPECT_EQ(loop_clean, GetParam().loop_clean);
+  const ClosureCase& c = GetParam();
+  const Tally reliable = weave_loop_clean(closure().at(c.quads), RuleSet::Reliable, 1);
+  const Tally extended =
+      weave_loop_clean(closure().at(c.quads), RuleSet::Extended, c.extended_every);
+  EXPECT_EQ(reliable.shapes, c.loop_clean);
   // Known defects left (docs/weave-recovery.md): one more fails the test, one fewer asks for
   // the pinned count to be lowered.
-  EXPECT_EQ(still_blocked[0], GetParam().blocked_reliable) << "reliable, still blocked";
-  EXPECT_EQ(still_blocked[1], GetParam().blocked_extended) << "extended, still blocked";
+  EXPECT_EQ(reliable.still, c.blocked_reliable) << "reliable, still blocked";
+  EXPECT_EQ(extended.still, c.blocked_extended) << "extended, still blocked";
 }
 
+// 18 quads: 95 loop-clean shapes, all woven under both rule sets (about a minute); one stays
+// blocked under each (loop-clean shapes 67 under reliable and 91 under extended, 0-based).
 INSTANTIATE_TEST_SUITE_P(Closure, EveryEvenSphere,
                          ::testing::Values(ClosureCase{6, 1, 0, 0}, ClosureCase{8, 0, 0, 0},
                                            ClosureCase{10, 1, 0, 0}, ClosureCase{12, 4, 0, 0},
-                                           ClosureCase{14, 4, 0, 0}, ClosureCase{16, 18, 0, 0}),
+                                           ClosureCase{14, 4, 0, 0}, ClosureCase{16, 18, 0, 0},
+                                           ClosureCase{18, 95, 1, 1}),
                          [](const auto& info) { return std::to_string(info.param.quads); });
+
+TEST(SphereClosureSlow, TwentyQuads) {
+  // The closure up to 20 quads (115,024 maps with 20, about 1.5 minutes to enumerate) and
+  // its 420 loop-clean 20-quad shapes under both rule sets: minutes, so only on request.
+  if (std::getenv("STCWEAVE_SLOW_TESTS") == nullptr)
+    GTEST_SKIP() << "set STCWEAVE_SLOW_TESTS=1 to run the 20-quad closure (slow)";
+  const auto c = test::sphere_closure(20);
+  EXPECT_EQ(c.at(19).size(), 32799U);
+  ASSERT_EQ(c.at(20).size(), 115024U);
+  // Every completed weave is certified (weave_both_ways). Still blocked (pinned, known
+  // defects, docs/weave-recovery.md): 9 of 420 under each rule set.
+  const Tally reliable = weave_loop_clean(c.at(20), RuleSet::Reliable, 1);
+  EXPECT_EQ(reliable.shapes, 420U);
+  EXPECT_EQ(reliable.still, 9U) << "reliable, still blocked";
+  const Tally extended = weave_loop_clean(c.at(20), RuleSet::Extended, 1);
+  EXPECT_EQ(extended.still, 9U) << "extended, still blocked";
+}
 
 TEST(BlockRecovery, CompletesTheIssueCase) {
   const stc::QuadSurface s = test::issue11_twelve_quads();

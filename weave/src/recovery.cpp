@@ -66,6 +66,9 @@ std::string first_refusals(const std::string& why) {
   return s;
 }
 
+/// Rules a recovery trial may apply per face of the front it starts from.
+constexpr std::size_t kRulesPerFace = 64;
+
 struct Search {
   WeaveContext& ctx;
   const WeaveRun& run;
@@ -89,6 +92,12 @@ struct Search {
       WeaveState trial = state;
       std::optional<std::string> again;
       bool gave_up = false;
+      // A trial's own rule budget: kRulesPerFace per face of its front (a weave of a front of
+      // F faces that needs more is running away; without it an `extended` trial could spend the
+      // whole budget of the input, up to minutes on a 18-quad sphere).
+      const std::size_t max_rules = ctx.max_rules;
+      ctx.max_rules = std::min(
+          max_rules, rules + kRulesPerFace * (state.front.num_faces() + 4 * m.faces.size()));
       try {
         ctx.relax_geometry = false;
         pillow_faces(trial, ctx, m.faces);
@@ -98,6 +107,7 @@ struct Search {
         again = e.what();
         gave_up = true;
       }
+      ctx.max_rules = max_rules;
       std::vector<Recovery> rest;
       const bool done = !again || (!gave_up && from(trial, *again, depth + 1, rest));
       ctx.observer = observer;
@@ -154,15 +164,29 @@ std::vector<Recovery> recover_blocked(WeaveState& state, WeaveContext& ctx, cons
   }
   Search search{ctx, run, limits};
   std::vector<Recovery> path;
-  const bool done = search.from(state, why, 0, path);
+  bool done = search.from(state, why, 0, path);
+  std::size_t trials = search.trials;
+  RecoveryLimits wider = limits;
+  // A second, wider search when the first finds nothing (a weave it completes is unchanged):
+  // ten times the trials and 2.5 times the depth. Not under `extended` with its reliable
+  // fallback (weave.cpp), which is searched the same way.
+  const bool has_fallback = ctx.options.rules == RuleSet::Extended && !ctx.options.selection;
+  if (!done && !has_fallback && limits.max_trials > 0) {
+    wider.max_trials = 10 * limits.max_trials;
+    wider.max_depth = limits.max_depth * 5 / 2;
+    Search second{ctx, run, wider};
+    path.clear();
+    done = second.from(state, why, 0, path);
+    trials += second.trials;
+  }
   if (!done) {
     throw WeaveError("weave: " + why + "\n  block recovery: no sequence of at most " +
-                     std::to_string(limits.max_depth) + " pillows completed the weave in " +
-                     std::to_string(search.trials) + " trials (a defect of the weaver: please " +
+                     std::to_string(wider.max_depth) + " pillows completed the weave in " +
+                     std::to_string(trials) + " trials (a defect of the weaver: please " +
                      "report the input; --block-recovery off shows the first block alone)");
   }
   state.stats.recoveries = path.size();
-  state.stats.recovery_trials = search.trials;
+  state.stats.recovery_trials = trials;
   return path;
 }
 
