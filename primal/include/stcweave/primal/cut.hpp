@@ -6,15 +6,16 @@
 /// along g quad-meshed discs, one per handle cycle found by `diagnose_handles`: the disc is a
 /// grid whose boundary is the cycle (corners where the cycle turns most), its nodes placed
 /// by transfinite interpolation of the cycle, or a loop-following chord disc (its dual chords
-/// pair the cycle's crossings of each loop, so that crossing loops are not merged). Cutting along it duplicates the cycle's nodes and
-/// the disc (one copy on each side), which lowers the genus by one; the cut ball is woven with
-/// every node of the cut surface fixed (the weave takes them as input nodes), then the two
-/// copies are glued back by identifying their nodes: the disc's nodes become interior nodes
-/// of the final mesh. A disc choice whose cut surface has a self-intersecting loop, whose
-/// weave is blocked or whose glued complex breaks an invariant is discarded and the next is
-/// tried. docs/topology.md explains the choices.
+/// pair the cycle's crossings of each loop, so that crossing loops are not merged). Cutting along
+/// it duplicates the cycle's nodes and the disc (one copy on each side), which lowers the genus by
+/// one; the cut ball is woven with every node of the cut surface fixed (the weave takes them as
+/// input nodes), then the two copies are glued back by identifying their nodes: the disc's nodes
+/// become interior nodes of the final mesh. A disc choice whose cut surface has a self-intersecting
+/// loop, whose weave is blocked or whose glued complex breaks an invariant is discarded and the
+/// next is tried. docs/topology.md explains the choices.
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,15 @@ struct CutOptions {
   /// When the weave of a cut ball blocks, it is tried once more with up to this many one-face
   /// pillows at blocked nodes (`weave::WeaveOptions::recovery_pillows`); 0: no second try.
   std::size_t recovery_pillows = 16;
+  /// Weaves one cut ball (a genus-0 surface over the cut surface's node ids, its points
+  /// included); empty: `weave::weave` with the dihedral angles of the extended rule set. The
+  /// result must have the layout of a plain weave's (the surface's nodes first).
+  std::function<weave::WeaveResult(const SurfaceMesh&, const weave::WeaveOptions&)> ball_weaver;
+  /// Accept cut surfaces whose loops cross themselves, as long as the cut adds no quad where a
+  /// loop crosses itself (the count never exceeds the solid's own); `ball_weaver` must weave
+  /// such balls (`weave_solids_self_crossing`, self_crossing.hpp). False: every cut surface
+  /// with a self-intersecting loop is discarded.
+  bool allow_self_crossing = false;
 };
 
 /// One handle cut: where, with which disc, after how many attempts.
