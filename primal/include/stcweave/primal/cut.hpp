@@ -6,13 +6,13 @@
 /// along g quad-meshed discs, one per handle cycle found by `diagnose_handles`: the disc is a
 /// grid whose boundary is the cycle (corners where the cycle turns most), its nodes placed
 /// by transfinite interpolation of the cycle, or a loop-following chord disc (its dual chords
-/// pair the cycle's crossings of each loop, so that crossing loops are not merged). Cutting along
-/// it duplicates the cycle's nodes and the disc (one copy on each side), which lowers the genus by
-/// one; the cut ball is woven with every node of the cut surface fixed (the weave takes them as
-/// input nodes), then the two copies are glued back by identifying their nodes: the disc's nodes
-/// become interior nodes of the final mesh. A disc choice whose cut surface has a self-intersecting
-/// loop, whose weave is blocked or whose glued complex breaks an invariant is discarded and the
-/// next is tried. docs/topology.md explains the choices.
+/// pair the cycle's crossings of each loop, so that crossing loops are not merged). Cutting along it duplicates the cycle's nodes and
+/// the disc (one copy on each side), which lowers the genus by one; the cut ball is woven with
+/// every node of the cut surface fixed (the weave takes them as input nodes), then the two
+/// copies are glued back by identifying their nodes: the disc's nodes become interior nodes
+/// of the final mesh. A disc choice whose cut surface has a self-intersecting loop, whose
+/// weave is blocked or whose glued complex breaks an invariant is discarded and the next is
+/// tried. docs/topology.md explains the choices.
 
 #include <cstddef>
 #include <functional>
