@@ -439,12 +439,16 @@ struct BallWeave {
 };
 
 BallWeave weave_ball(const CutSurface& s, const weave::WeaveOptions& options,
-                     std::size_t first_interior) {
+                     std::size_t first_interior, const CutOptions& cut_options) {
   BallWeave out;
-  const std::vector<std::array<double, 4>> angles = options.rules == weave::RuleSet::Extended
-                                                        ? dihedral_angles(s.mesh)
-                                                        : std::vector<std::array<double, 4>>{};
-  out.woven = weave::weave(s.mesh.surface, options, angles);
+  if (cut_options.ball_weaver) {
+    out.woven = cut_options.ball_weaver(s.mesh, options);
+  } else {
+    const std::vector<std::array<double, 4>> angles = options.rules == weave::RuleSet::Extended
+                                                          ? dihedral_angles(s.mesh)
+                                                          : std::vector<std::array<double, 4>>{};
+    out.woven = weave::weave(s.mesh.surface, options, angles);
+  }
   const std::size_t inputs = out.woven.num_input_nodes;
   out.interior = out.woven.complex.num_nodes - inputs;
   for (const stc::Hex& h : out.woven.complex.hexes) {
@@ -456,6 +460,11 @@ BallWeave weave_ball(const CutSurface& s, const weave::WeaveOptions& options,
     out.hexes.push_back(m);
   }
   return out;
+}
+
+/// The number of quads of `s` where a loop crosses itself.
+std::size_t self_crossing_quads_of(const CutSurface& s) {
+  return stc::find_loops(s.mesh.surface, stc::FindLoopsOptions{false}).num_self_crossing_quads();
 }
 
 void add_stats(weave::WeaveStats& sum, const weave::WeaveStats& s) {
@@ -735,13 +744,15 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
       rep.cut_seconds += seconds_since(t0);
       const stc::LoopSet loops =
           stc::find_loops(current.mesh.surface, stc::FindLoopsOptions{false});
-      if (loops.num_self_intersecting() > 0) {
+      if (loops.num_self_intersecting() > 0 &&
+          (!cut_options.allow_self_crossing ||
+           loops.num_self_crossing_quads() > self_crossing_quads_of(solid))) {
         throw Unsupported(ComponentId(c).str() +
                           ": cutting its cavities off gives a surface with a self-intersecting "
                           "loop: not supported yet");
       }
       const auto t1 = std::chrono::steady_clock::now();
-      const BallWeave w = weave_ball(current, options, next_final);
+      const BallWeave w = weave_ball(current, options, next_final, cut_options);
       rep.weave_seconds += seconds_since(t1);
       const std::string problem = glue_problem(w, next_final + w.interior, rep);
       if (!problem.empty()) {
@@ -805,6 +816,9 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
         }
       }
     }
+    // With `allow_self_crossing`, the solid's own count of self-crossing quads bounds its cuts'.
+    const std::size_t solid_self_crossing_quads =
+        cut_options.allow_self_crossing ? self_crossing_quads_of(solid) : 0;
     rep.cut_seconds += seconds_since(t0);
 
     // Cut the handles one after the other (the cycles are disjoint, so their node ids stay
@@ -899,7 +913,9 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
         const stc::LoopSet loops = stc::find_loops(cut.mesh.surface, stc::FindLoopsOptions{false});
         ++loop_checks;
         rep.cut_seconds += seconds_since(t1);
-        if (loops.num_self_intersecting() > 0) {
+        if (loops.num_self_intersecting() > 0 &&
+            (!cut_options.allow_self_crossing ||
+             loops.num_self_crossing_quads() > solid_self_crossing_quads)) {
           ++self_intersecting_cuts;
           continue;
         }
@@ -914,7 +930,7 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
         for (const weave::WeaveOptions& attempt : *chain) {
           t1 = std::chrono::steady_clock::now();
           try {
-            BallWeave w = weave_ball(cut, attempt, trial_final);
+            BallWeave w = weave_ball(cut, attempt, trial_final, cut_options);
             rep.weave_seconds += seconds_since(t1);
             const std::string problem = glue_problem(w, trial_final + w.interior, rep);
             if (!problem.empty()) {
@@ -940,7 +956,7 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
     };
     if (cycles.empty()) {
       auto t1 = std::chrono::steady_clock::now();
-      ball = weave_ball(solid, options, next_final);
+      ball = weave_ball(solid, options, next_final, cut_options);
       rep.weave_seconds += seconds_since(t1);
     } else if (const auto primary = cycles;
                !std::any_of(passes.begin(), passes.end(), [&](const Pass& pass) {

@@ -7,6 +7,7 @@
 #include "stcweave/primal/cut.hpp"
 #include "stcweave/primal/edge_angles.hpp"
 #include "stcweave/primal/pillow.hpp"
+#include "stcweave/primal/self_crossing_solids.hpp"
 #include "stcweave/stc/errors.hpp"
 
 namespace stcweave::primal {
@@ -70,13 +71,10 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
                                                         ? dihedral_angles(r.surface)
                                                         : std::vector<std::array<double, 4>>{};
   const bool self_crossing = r.diagnosis.self_intersecting_loops.value_or(0) > 0;
-  if (self_crossing && !whole) {
-    throw Unsupported(file.path +
-                      ": loops that cross themselves on a solid with handles or several "
-                      "shells are not supported yet (each is supported alone); mesh the "
-                      "shells separately or re-mesh the surface without self-intersecting loops");
-  }
-  if (whole && options.self_crossing_moves && self_crossing) {
+  if (!whole && options.self_crossing_moves && self_crossing) {
+    r.woven = weave_solids_self_crossing(r.surface, options.weave, options.cut,
+                                         options.self_crossing, &r.solids, r.self_crossing);
+  } else if (whole && options.self_crossing_moves && self_crossing) {
     r.woven = weave_self_crossing(r.surface, options.weave, angles, options.self_crossing,
                                   r.self_crossing);
   } else if (whole) {

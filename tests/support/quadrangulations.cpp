@@ -185,4 +185,14 @@ std::optional<primal::SurfaceMesh> random_quadrangulation(std::uint32_t seed, in
   return mesh;
 }
 
+std::optional<primal::SurfaceMesh> rotate_edge(const primal::SurfaceMesh& mesh, std::size_t quad,
+                                               std::size_t corner, bool other_diagonal) {
+  auto quads = rotated(mesh.surface.quads, quad, corner, other_diagonal);
+  if (!quads) return std::nullopt;
+  primal::SurfaceMesh out = mesh;
+  out.surface.quads = std::move(*quads);
+  if (!is_strong_quadrangulation(out.surface)) return std::nullopt;
+  return out;
+}
+
 }  // namespace stcweave::test

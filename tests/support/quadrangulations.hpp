@@ -7,6 +7,7 @@
 /// drives a 32-bit linear congruential generator of our own (std:: distributions differ
 /// between standard libraries).
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 
@@ -26,5 +27,12 @@ std::optional<primal::SurfaceMesh> random_quadrangulation(std::uint32_t seed, in
 /// True when `surface` is closed, consistently oriented, every node used has valence >= 3, no
 /// two quads have the same four nodes and no two quads share two edges.
 bool is_strong_quadrangulation(const stc::QuadSurface& surface);
+
+/// `mesh` with the edge leaving corner `corner` of quad `quad` rotated (the two quads sharing
+/// it re-split along the first diagonal of their hexagon, or the second when
+/// `other_diagonal`), points unchanged; nothing when the rotation is not allowed (a repeated
+/// hexagon node, the diagonal already an edge) or the result is not a strong quadrangulation.
+std::optional<primal::SurfaceMesh> rotate_edge(const primal::SurfaceMesh& mesh, std::size_t quad,
+                                               std::size_t corner, bool other_diagonal);
 
 }  // namespace stcweave::test

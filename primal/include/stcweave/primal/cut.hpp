@@ -15,6 +15,7 @@
 /// tried. docs/topology.md explains the choices.
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,15 @@ struct CutOptions {
   /// When the weave of a cut ball blocks, it is tried once more with up to this many one-face
   /// pillows at blocked nodes (`weave::WeaveOptions::recovery_pillows`); 0: no second try.
   std::size_t recovery_pillows = 16;
+  /// Weaves one cut ball (a genus-0 surface over the cut surface's node ids, its points
+  /// included); empty: `weave::weave` with the dihedral angles of the extended rule set. The
+  /// result must have the layout of a plain weave's (the surface's nodes first).
+  std::function<weave::WeaveResult(const SurfaceMesh&, const weave::WeaveOptions&)> ball_weaver;
+  /// Accept cut surfaces whose loops cross themselves, as long as the cut adds no quad where a
+  /// loop crosses itself (the count never exceeds the solid's own); `ball_weaver` must weave
+  /// such balls (`weave_solids_self_crossing`, self_crossing.hpp). False: every cut surface
+  /// with a self-intersecting loop is discarded.
+  bool allow_self_crossing = false;
 };
 
 /// One handle cut: where, with which disc, after how many attempts.

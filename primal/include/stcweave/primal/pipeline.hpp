@@ -101,7 +101,7 @@ struct MeshResult {
 /// \throw TopologyError for a surface that cannot be woven (see `require_weavable`).
 /// \throw TopologyError for an odd handle cycle (no hex mesh exists).
 /// \throw Unsupported for nested shells, handles that `weave_solids` cannot cut, or loops
-///        that cross themselves on a solid with handles or several shells.
+///        when no cut of a solid with self-intersecting loops can be woven and glued.
 /// \throw WeaveError when the weave is blocked, or the search for front moves of a surface
 ///        with self-intersecting loops gives up.
 /// \throw InternalError when the woven complex breaks an invariant (unless keep_invalid).
