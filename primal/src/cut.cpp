@@ -626,6 +626,7 @@ std::optional<Disc> disc_on(const CutSurface& s, const std::vector<NodeId>& rail
                             const DiscChoice& choice) {
   if (choice.partner.empty()) return grid_disc(s, rail, choice);
   std::vector<Eigen::RowVector3d> points;
+  points.reserve(rail.size());
   for (NodeId v : rail) points.emplace_back(s.mesh.points.row(v.value()));
   return chord_disc(points, choice.partner);
 }
@@ -1322,15 +1323,15 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
         names +=
             (cycles[k].size() > 8 ? "-... (" : " (") + std::to_string(cycles[k].size()) + " edges)";
       }
-      throw Unsupported(ComponentId(c).str() +
-                        ": no choice of discs spanning the handle "
-                        "cycles " +
-                        names + " could be woven and glued (" + std::to_string(loop_checks) +
-                        " cuts tried, " + std::to_string(self_intersecting_cuts) +
-                        " with a self-intersecting loop, " + std::to_string(weaves) + " woven" +
-                        (failures.size() > 600 ? failures.substr(0, 600) + "..." : failures) +
-                        "; slabs: " + slab_why +
-                        "); docs/topology.md says what the disc choice needs");
+      std::string why = ComponentId(c).str() + ": no choice of discs spanning the handle cycles ";
+      why += names;
+      why += " could be woven and glued (" + std::to_string(loop_checks) + " cuts tried, ";
+      why += std::to_string(self_intersecting_cuts) + " with a self-intersecting loop, ";
+      why += std::to_string(weaves) + " woven";
+      why += failures.size() > 600 ? failures.substr(0, 600) + "..." : failures;
+      why += "; slabs: " + slab_why;
+      why += "); docs/topology.md says what the disc choice needs";
+      throw Unsupported(why);
     }
     for (HandleCut& hc : cuts) rep.cuts.push_back(std::move(hc));
     next_final += ball->interior;
