@@ -7,6 +7,7 @@
 #include <map>
 #include <numeric>
 #include <optional>
+#include <set>
 #include <tuple>
 
 #include "chord_disc.hpp"
@@ -480,14 +481,18 @@ void add_stats(weave::WeaveStats& sum, const weave::WeaveStats& s) {
   sum.parallel_merges += s.parallel_merges;
   sum.nonconvexity_seams += s.nonconvexity_seams;
   sum.rolled_back_shrinks += s.rolled_back_shrinks;
+  sum.front_pillows += s.front_pillows;
+  sum.recoveries += s.recoveries;
+  sum.recovery_trials += s.recovery_trials;
 }
 
-/// The glued complex of `ball` (its hexes over final ids, `num_nodes` final nodes) checked by
+/// The glued complex of `hexes` (over final ids, `num_nodes` final nodes) checked by
 /// `stc::validate_hex_complex`: empty when valid, else the summary of what it breaks.
-std::string glue_problem(const BallWeave& ball, std::size_t num_nodes, SolidsReport& rep) {
+std::string glue_problem(const std::vector<stc::Hex>& hexes, std::size_t num_nodes,
+                         SolidsReport& rep) {
   const auto t = std::chrono::steady_clock::now();
   stc::HexComplex glued;
-  glued.hexes = ball.hexes;
+  glued.hexes = hexes;
   glued.num_nodes = num_nodes;
   const stc::ValidationReport v = stc::validate_hex_complex(glued);
   rep.glue_seconds += seconds_since(t);
@@ -502,6 +507,8 @@ void append_ball(weave::WeaveResult& result, const BallWeave& ball) {
   for (std::int32_t sh : ball.woven.hex_shrink) result.hex_shrink.push_back(sh);
   for (const std::string& r : ball.woven.hex_rule) result.hex_rule.push_back(r);
   add_stats(result.stats, ball.woven.stats);
+  result.recoveries.insert(result.recoveries.end(), ball.woven.recoveries.begin(),
+                           ball.woven.recoveries.end());
   for (weave::TraceEvent e : ball.woven.trace) {
     if (e.hex.is_valid()) e.hex = HexId(e.hex.index() + hex_offset);
     result.trace.push_back(std::move(e));
@@ -558,6 +565,333 @@ CutSurface cut_annulus(const CutSurface& s, const std::vector<NodeId>& outer,
   }
   out.mesh.surface.num_nodes = n + 2 * len;
   return out;
+}
+
+/// Disc choices tried per rail by the slab route.
+constexpr std::size_t kSlabChoices = 8;
+/// Weaves of slab balls per solid by the slab route.
+constexpr std::size_t kSlabWeaves = 60;
+
+/// A band of quads beside a handle cycle: the quads on the cycle's minus side that touch it,
+/// between the cycle and a second cycle of the same class (`outer`, walked the way the band's
+/// quads traverse it).
+struct Band {
+  std::vector<std::size_t> quads;  ///< of the surface
+  std::vector<NodeId> outer;
+};
+
+/// The band of `cycle` on `surface`: none when the quads touching the cycle on its minus side
+/// do not make an annulus whose other boundary is one simple cycle off the cycle.
+std::optional<Band> band_of(const stc::QuadSurface& surface, const std::vector<NodeId>& cycle) {
+  const std::vector<std::vector<std::size_t>> plus = plus_fans(surface, cycle);
+  std::vector<char> on_cycle(surface.num_nodes, 0);
+  for (NodeId v : cycle) on_cycle[v.index()] = 1;
+  std::vector<char> is_plus(surface.num_quads(), 0);
+  for (const auto& fan : plus)
+    for (std::size_t q : fan) is_plus[q] = 1;
+  Band band;
+  for (std::size_t q = 0; q < surface.num_quads(); ++q) {
+    const stc::Quad& quad = surface.quads[q];
+    if (std::none_of(quad.begin(), quad.end(), [&](NodeId v) { return on_cycle[v.index()] != 0; }))
+      continue;
+    if (is_plus[q] != 0) {
+      // A plus quad is one on the minus side too when it touches the cycle elsewhere.
+      continue;
+    }
+    band.quads.push_back(q);
+  }
+  std::set<std::pair<NodeId, NodeId>> sides;
+  for (std::size_t q : band.quads)
+    for (std::size_t i = 0; i < 4; ++i)
+      sides.emplace(surface.quads[q][i], surface.quads[q][(i + 1) % 4]);
+  std::map<NodeId, NodeId> next;
+  for (const auto& [x, y] : sides) {
+    if (sides.count({y, x}) != 0) continue;
+    if (on_cycle[x.index()] != 0 && on_cycle[y.index()] != 0) continue;  // a cycle edge
+    if (on_cycle[x.index()] != 0 || on_cycle[y.index()] != 0) return std::nullopt;
+    if (!next.emplace(x, y).second) return std::nullopt;  // pinched
+  }
+  if (next.size() < 4) return std::nullopt;
+  NodeId v = next.begin()->first;
+  for (std::size_t k = 0; k < next.size(); ++k) {
+    band.outer.push_back(v);
+    const auto it = next.find(v);
+    if (it == next.end()) return std::nullopt;
+    v = it->second;
+  }
+  if (v != band.outer.front()) return std::nullopt;
+  std::vector<NodeId> sorted = band.outer;
+  std::sort(sorted.begin(), sorted.end());
+  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return std::nullopt;
+  // Every cycle edge must be traversed backward by a band quad (the band lies on the minus
+  // side all along).
+  for (std::size_t k = 0; k < cycle.size(); ++k)
+    if (sides.count({cycle[(k + 1) % cycle.size()], cycle[k]}) == 0) return std::nullopt;
+  return band;
+}
+
+/// The disc of `choice` spanning `rail` (a cycle of `s`): a grid, an O-grid or a chord disc.
+std::optional<Disc> disc_on(const CutSurface& s, const std::vector<NodeId>& rail,
+                            const DiscChoice& choice) {
+  if (choice.partner.empty()) return grid_disc(s, rail, choice);
+  std::vector<Eigen::RowVector3d> points;
+  points.reserve(rail.size());
+  for (NodeId v : rail) points.emplace_back(s.mesh.points.row(v.value()));
+  return chord_disc(points, choice.partner);
+}
+
+/// Disc choices for `rail` on `s`: loop-following chord discs, then grids, then O-grids; at
+/// most kSlabChoices.
+std::vector<DiscChoice> rail_choices(const CutSurface& s, const std::vector<NodeId>& rail) {
+  std::vector<DiscChoice> choices = disc_choices(s.mesh.points, rail);
+  const stc::LoopSet loops = stc::find_loops(s.mesh.surface, stc::FindLoopsOptions{false});
+  std::vector<DiscChoice> follow =
+      loop_following_choices(crossing_loops(s.mesh.surface, loops, rail), loops);
+  choices.insert(choices.begin(), follow.begin(), follow.end());
+  if (choices.size() > kSlabChoices) choices.resize(kSlabChoices);
+  return choices;
+}
+
+/// `s` with its unused nodes dropped; `*renumber` maps old ids to new (invalid: dropped).
+CutSurface compacted(const CutSurface& s, std::vector<NodeId>* renumber) {
+  std::vector<NodeId>& map = *renumber;
+  map.assign(s.mesh.surface.num_nodes, NodeId::invalid());
+  for (const stc::Quad& q : s.mesh.surface.quads)
+    for (NodeId v : q) map[v.index()] = NodeId(0);
+  CutSurface out;
+  for (std::size_t v = 0; v < map.size(); ++v) {
+    if (!map[v].is_valid()) continue;
+    map[v] = NodeId(out.final_id.size());
+    out.final_id.push_back(s.final_id[v]);
+  }
+  out.mesh.points.resize(static_cast<Eigen::Index>(out.final_id.size()), 3);
+  for (std::size_t v = 0; v < map.size(); ++v)
+    if (map[v].is_valid())
+      out.mesh.points.row(map[v].value()) = s.mesh.points.row(static_cast<Eigen::Index>(v));
+  for (stc::Quad q : s.mesh.surface.quads) {
+    for (NodeId& v : q) v = map[v.index()];
+    out.mesh.surface.quads.push_back(q);
+  }
+  out.mesh.surface.num_nodes = out.final_id.size();
+  return out;
+}
+
+/// A slab cut of a handle: the rest of the solid and the slab, two surfaces over their own
+/// node ids (final ids in `final_id`).
+struct SlabCut {
+  CutSurface rest;
+  CutSurface slab;
+  std::vector<NodeId> rest_renumber;  ///< node of the surface cut -> node of `rest`
+};
+
+/// The cut of `s` along discs on both boundaries of `band` (`cycle` and `band.outer`): the
+/// slab is the band closed by the two discs, the rest is `s` without the band, closed by the
+/// same two discs facing the other way. The discs' interior nodes are new final nodes (from
+/// `*next_final` on), each one node shared by the slab and the rest: nothing is identified
+/// at the glue. None when a disc choice has no disc.
+std::optional<SlabCut> cut_slab(const CutSurface& s, const std::vector<NodeId>& cycle,
+                                const Band& band, const DiscChoice& inner_choice,
+                                const DiscChoice& outer_choice, std::size_t* next_final) {
+  const std::optional<Disc> di = disc_on(s, cycle, inner_choice);
+  const std::optional<Disc> dout = disc_on(s, band.outer, outer_choice);
+  if (!di || !dout) return std::nullopt;
+  const stc::QuadSurface& surface = s.mesh.surface;
+  const std::size_t n = surface.num_nodes;
+  CutSurface all;  // both discs' nodes added to s
+  std::size_t interior = 0;
+  for (const auto& w : di->walk) interior += w ? 0 : 1;
+  for (const auto& w : dout->walk) interior += w ? 0 : 1;
+  all.mesh.points.resize(static_cast<Eigen::Index>(n + interior), 3);
+  all.mesh.points.topRows(static_cast<Eigen::Index>(n)) =
+      s.mesh.points.topRows(static_cast<Eigen::Index>(n));
+  all.final_id = s.final_id;
+  all.final_id.resize(n + interior);
+  std::size_t t = n;
+  const auto place = [&](const Disc& d, const std::vector<NodeId>& rail, std::size_t start) {
+    std::vector<NodeId> node(d.walk.size());
+    for (std::size_t k = 0; k < d.walk.size(); ++k) {
+      if (d.walk[k]) {
+        node[k] = rail[(start + *d.walk[k]) % rail.size()];
+        continue;
+      }
+      node[k] = NodeId(t);
+      all.mesh.points.row(static_cast<Eigen::Index>(t)) = d.positions[k];
+      all.final_id[t] = NodeId((*next_final)++);
+      ++t;
+    }
+    return node;
+  };
+  const std::vector<NodeId> ni = place(*di, cycle, inner_choice.start);
+  const std::vector<NodeId> no = place(*dout, band.outer, outer_choice.start);
+  all.mesh.surface.num_nodes = n + interior;
+  CutSurface rest = all;
+  CutSurface slab = all;
+  std::vector<char> in_band(surface.num_quads(), 0);
+  for (std::size_t q : band.quads) in_band[q] = 1;
+  for (std::size_t q = 0; q < surface.num_quads(); ++q)
+    (in_band[q] != 0 ? slab : rest).mesh.surface.quads.push_back(surface.quads[q]);
+  // The disc on the cycle: forward (walk p to p + 1) in the slab, reversed in the rest; the
+  // disc on the outer cycle the other way round.
+  for (const auto& q : di->quads) {
+    slab.mesh.surface.quads.push_back({ni[q[0]], ni[q[1]], ni[q[2]], ni[q[3]]});
+    rest.mesh.surface.quads.push_back({ni[q[0]], ni[q[3]], ni[q[2]], ni[q[1]]});
+  }
+  for (const auto& q : dout->quads) {
+    rest.mesh.surface.quads.push_back({no[q[0]], no[q[1]], no[q[2]], no[q[3]]});
+    slab.mesh.surface.quads.push_back({no[q[0]], no[q[3]], no[q[2]], no[q[1]]});
+  }
+  SlabCut out;
+  std::vector<NodeId> unused;
+  out.slab = compacted(slab, &unused);
+  out.rest = compacted(rest, &out.rest_renumber);
+  return out;
+}
+
+/// What the slab route kept: the woven rest, the slabs' hexes, the next free final id.
+struct SlabRoute {
+  BallWeave ball;
+  std::vector<BallWeave> slabs;
+  std::size_t next_final = 0;
+  std::vector<HandleCut> cuts;
+};
+
+/// Whether the surface of `s` has one component of genus `genus` and no self-intersecting
+/// loop.
+bool clean_of_genus(const CutSurface& s, int genus) {
+  const stc::SurfaceTopology topo = stc::surface_topology(s.mesh.surface);
+  if (topo.components.size() != 1 || topo.components[0].genus != genus) return false;
+  return stc::find_loops(s.mesh.surface, topo, stc::FindLoopsOptions{false})
+             .num_self_intersecting() == 0;
+}
+
+/// The slab route for a solid whose handle cycles are `sets[0]` (or one of the other sets):
+/// handle by handle, the band of quads beside the cycle, closed by a disc on each of its two
+/// boundary cycles, is woven as a ball of its own (the slab), and the rest of the solid,
+/// closed by the same discs, loses the handle; the last rest is woven as a ball. Every piece
+/// is glued to the others by node ids alone (docs/topology.md, "Slabs"). None when no choice
+/// within the budgets gives a valid complex; `*why` then says what was tried.
+std::optional<SlabRoute> slab_route(const CutSurface& solid,
+                                    const std::vector<std::vector<std::vector<NodeId>>>& sets,
+                                    const std::vector<weave::WeaveOptions>& chain,
+                                    const CutOptions& cut_options, std::size_t first_final,
+                                    SolidsReport& rep, std::string* why) {
+  std::size_t loop_checks = 0;
+  std::size_t weaves = 0;
+  std::size_t no_band = 0;
+  std::string failures;
+  std::optional<SlabRoute> found;
+  std::vector<std::vector<NodeId>> cycles;
+  std::vector<HandleCut> cuts;
+  std::vector<BallWeave> slabs;
+  const auto out_of_budget = [&]() {
+    return weaves >= kSlabWeaves || loop_checks >= cut_options.max_loop_checks;
+  };
+  const auto note = [&](const std::string& what) {
+    if (failures.size() < 400) failures += "; " + what;
+  };
+  // The first weave of `chain` that completes; none when every one blocks.
+  const auto weave_first = [&](const CutSurface& s, std::size_t first) -> std::optional<BallWeave> {
+    ++weaves;
+    for (const weave::WeaveOptions& attempt : chain) {
+      const auto t1 = std::chrono::steady_clock::now();
+      try {
+        BallWeave w = weave_ball(s, attempt, first);
+        rep.weave_seconds += seconds_since(t1);
+        return w;
+      } catch (const WeaveError& e) {
+        rep.weave_seconds += seconds_since(t1);
+        note(std::string("slab weave blocked: ") + std::string(e.what()).substr(0, 60));
+      } catch (const InvalidInput& e) {
+        rep.weave_seconds += seconds_since(t1);
+        note(std::string("slab cut refused by the weave: ") + std::string(e.what()).substr(0, 60));
+      }
+    }
+    return std::nullopt;
+  };
+  const std::function<bool(const CutSurface&, std::size_t, std::size_t)> cut_from =
+      [&](const CutSurface& current, std::size_t k, std::size_t final_start) -> bool {
+    if (out_of_budget()) return false;
+    auto t1 = std::chrono::steady_clock::now();
+    const std::optional<Band> band = band_of(current.mesh.surface, cycles[k]);
+    if (!band) {
+      rep.cut_seconds += seconds_since(t1);
+      ++no_band;
+      return false;
+    }
+    const std::vector<DiscChoice> inner = rail_choices(current, cycles[k]);
+    const std::vector<DiscChoice> outer = rail_choices(current, band->outer);
+    rep.cut_seconds += seconds_since(t1);
+    HandleCut& hc = cuts[k];
+    hc.cycle.clear();
+    for (NodeId v : cycles[k]) hc.cycle.push_back(current.final_id[v.index()]);
+    const int genus_after = static_cast<int>(cycles.size() - k - 1);
+    for (const DiscChoice& ci : inner) {
+      for (const DiscChoice& co : outer) {
+        if (out_of_budget()) return false;
+        ++hc.attempts;
+        t1 = std::chrono::steady_clock::now();
+        std::size_t trial_final = final_start;
+        std::optional<SlabCut> cut = cut_slab(current, cycles[k], *band, ci, co, &trial_final);
+        if (!cut) {
+          rep.cut_seconds += seconds_since(t1);
+          continue;
+        }
+        ++loop_checks;
+        const bool clean = clean_of_genus(cut->slab, 0) && clean_of_genus(cut->rest, genus_after);
+        rep.cut_seconds += seconds_since(t1);
+        if (!clean) continue;
+        // The other handles' cycles must stay on the rest.
+        bool kept_cycles = true;
+        std::vector<std::vector<NodeId>> saved = cycles;
+        for (std::size_t j = k + 1; j < cycles.size() && kept_cycles; ++j) {
+          for (NodeId& v : cycles[j]) {
+            v = cut->rest_renumber[v.index()];
+            if (!v.is_valid()) kept_cycles = false;
+          }
+        }
+        if (!kept_cycles) {
+          cycles = saved;
+          continue;
+        }
+        std::optional<BallWeave> slab = weave_first(cut->slab, trial_final);
+        if (!slab) {
+          cycles = saved;
+          continue;
+        }
+        const std::size_t after_slab = trial_final + slab->interior;
+        hc.grid_a = ci.a;
+        hc.grid_b = ci.b;
+        hc.disc = "slab: " + disc_name(ci) + " and " + disc_name(co) + ", " +
+                  std::to_string(slab->hexes.size()) + " hexes";
+        slabs.push_back(std::move(*slab));
+        if (k + 1 < cycles.size()) {
+          if (cut_from(cut->rest, k + 1, after_slab)) return true;
+        } else if (std::optional<BallWeave> w = weave_first(cut->rest, after_slab)) {
+          std::vector<stc::Hex> all = w->hexes;
+          for (const BallWeave& b : slabs) all.insert(all.end(), b.hexes.begin(), b.hexes.end());
+          const std::string problem = glue_problem(all, after_slab + w->interior, rep);
+          if (problem.empty()) {
+            found = SlabRoute{std::move(*w), slabs, after_slab, cuts};
+            return true;
+          }
+          note("slabs glued invalid (" + problem.substr(0, 100) + ")");
+        }
+        slabs.pop_back();
+        cycles = saved;
+      }
+    }
+    return false;
+  };
+  for (const auto& set : sets) {
+    cycles = set;
+    cuts.assign(set.size(), HandleCut{});
+    slabs.clear();
+    if (cut_from(solid, 0, first_final)) return found;
+    if (out_of_budget()) break;
+  }
+  *why = std::to_string(loop_checks) + " slab cuts tried, " + std::to_string(no_band) +
+         " cycles without a band beside them, " + std::to_string(weaves) + " weaves" + failures;
+  return std::nullopt;
 }
 
 /// Whether the ray from `o` along `dir` crosses triangle (a, b, c) at t > 0.
@@ -754,7 +1088,7 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
       const auto t1 = std::chrono::steady_clock::now();
       const BallWeave w = weave_ball(current, options, next_final, cut_options);
       rep.weave_seconds += seconds_since(t1);
-      const std::string problem = glue_problem(w, next_final + w.interior, rep);
+      const std::string problem = glue_problem(w.hexes, next_final + w.interior, rep);
       if (!problem.empty()) {
         throw Unsupported(ComponentId(c).str() +
                           ": the cavity cut woven and glued back breaks an invariant (" +
@@ -854,6 +1188,8 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
     bool follow_first = false;
     const std::vector<weave::WeaveOptions>* chain = &passes[0].chain;
     std::optional<BallWeave> ball;
+    std::vector<BallWeave> slabs;  // the slab route's slabs
+    std::string slab_why;
     std::vector<HandleCut> cuts(cycles.size());
     std::size_t loop_checks = 0;
     std::size_t self_intersecting_cuts = 0;
@@ -932,7 +1268,7 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
           try {
             BallWeave w = weave_ball(cut, attempt, trial_final, cut_options);
             rep.weave_seconds += seconds_since(t1);
-            const std::string problem = glue_problem(w, trial_final + w.interior, rep);
+            const std::string problem = glue_problem(w.hexes, trial_final + w.interior, rep);
             if (!problem.empty()) {
               note(choice, k, "glued complex invalid (" + problem.substr(0, 120) + ")");
               continue;
@@ -954,27 +1290,47 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
       }
       return false;
     };
+    // The slab route: the band of quads beside each handle cycle closed by two discs and
+    // woven on its own, so that no node is identified at the glue.
+    const auto try_slabs = [&](const std::vector<std::vector<NodeId>>& primary) {
+      std::vector<std::vector<std::vector<NodeId>>> sets{primary};
+      sets.insert(sets.end(), fallbacks.begin(), fallbacks.end());
+      std::optional<SlabRoute> slab =
+          slab_route(solid, sets, passes[1].chain, cut_options, next_final, rep, &slab_why);
+      if (!slab) return false;
+      cuts = std::move(slab->cuts);
+      ball = std::move(slab->ball);
+      slabs = std::move(slab->slabs);
+      next_final = slab->next_final;
+      return true;
+    };
     if (cycles.empty()) {
       auto t1 = std::chrono::steady_clock::now();
       ball = weave_ball(solid, options, next_final, cut_options);
       rep.weave_seconds += seconds_since(t1);
     } else if (const auto primary = cycles;
-               !std::any_of(passes.begin(), passes.end(), [&](const Pass& pass) {
-                 follow_first = pass.follow_first;
-                 chain = &pass.chain;
-                 loop_checks = 0;
-                 weaves = 0;
-                 self_intersecting_cuts = 0;
-                 failures.clear();
-                 cycles = primary;
-                 for (HandleCut& hc : cuts) hc.attempts = 0;
-                 if (search(solid, 0, next_final)) return true;
-                 return std::any_of(fallbacks.begin(), fallbacks.end(), [&](const auto& set) {
-                   cycles = set;
-                   return search(solid, 0, next_final);
-                 });
-               })) {
+               !(cut_options.slab_first && try_slabs(primary)) &&
+               !std::any_of(passes.begin(), passes.end(),
+                            [&](const Pass& pass) {
+                              follow_first = pass.follow_first;
+                              chain = &pass.chain;
+                              loop_checks = 0;
+                              weaves = 0;
+                              self_intersecting_cuts = 0;
+                              failures.clear();
+                              cycles = primary;
+                              for (HandleCut& hc : cuts) hc.attempts = 0;
+                              if (search(solid, 0, next_final)) return true;
+                              return std::any_of(fallbacks.begin(), fallbacks.end(),
+                                                 [&](const auto& set) {
+                                                   cycles = set;
+                                                   return search(solid, 0, next_final);
+                                                 });
+                            }) &&
+               !(!cut_options.slab_first && try_slabs(primary))) {
       cycles = primary;
+    }
+    if (!ball) {
       std::string names;
       for (std::size_t k = 0; k < cycles.size(); ++k) {
         names += (k > 0 ? ", " : "");
@@ -983,18 +1339,20 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
         names +=
             (cycles[k].size() > 8 ? "-... (" : " (") + std::to_string(cycles[k].size()) + " edges)";
       }
-      throw Unsupported(ComponentId(c).str() +
-                        ": no choice of discs spanning the handle "
-                        "cycles " +
-                        names + " could be woven and glued (" + std::to_string(loop_checks) +
-                        " cuts tried, " + std::to_string(self_intersecting_cuts) +
-                        " with a self-intersecting loop, " + std::to_string(weaves) + " woven" +
-                        (failures.size() > 600 ? failures.substr(0, 600) + "..." : failures) +
-                        "); docs/topology.md says what the disc choice needs");
+      std::string why = ComponentId(c).str() + ": no choice of discs spanning the handle cycles ";
+      why += names;
+      why += " could be woven and glued (" + std::to_string(loop_checks) + " cuts tried, ";
+      why += std::to_string(self_intersecting_cuts) + " with a self-intersecting loop, ";
+      why += std::to_string(weaves) + " woven";
+      why += failures.size() > 600 ? failures.substr(0, 600) + "..." : failures;
+      why += "; slabs: " + slab_why;
+      why += "); docs/topology.md says what the disc choice needs";
+      throw Unsupported(why);
     }
     for (HandleCut& hc : cuts) rep.cuts.push_back(std::move(hc));
     next_final += ball->interior;
     append_ball(result, *ball);
+    for (const BallWeave& b : slabs) append_ball(result, b);
   }
   const auto t2 = std::chrono::steady_clock::now();
   // Interior nodes were numbered solid by solid (discs first, then the weave's); the weave's

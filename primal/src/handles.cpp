@@ -54,27 +54,10 @@ constexpr std::size_t kNone = static_cast<std::size_t>(-1);
 /// Per class, how many roots' best cycles are kept as alternative representatives.
 constexpr std::size_t kAlternativePool = 32;
 
-void grow_tree(const Graph& g, std::size_t root, Tree& t) {
-  t.parent[root] = kNone;
-  t.parent_edge[root] = kNone;
-  t.depth[root] = 0;
-  std::size_t head = t.order.size();
-  t.order.push_back(root);
-  while (head < t.order.size()) {
-    const std::size_t v = t.order[head++];
-    for (const auto& [w, e] : g.adj[v]) {
-      if (t.depth[w] != kNone) continue;
-      t.depth[w] = t.depth[v] + 1;
-      t.parent[w] = v;
-      t.parent_edge[w] = e;
-      t.order.push_back(w);
-    }
-  }
-}
-
-/// A breadth-first tree from `root` in which the nodes marked in `leaf` are left as leaves
-/// while the others reach the rest; then the nodes reachable only through them.
-void grow_tree_avoiding(const Graph& g, std::size_t root, const std::vector<char>& leaf, Tree& t) {
+/// A breadth-first tree from `root` over the edges of `g`. With `leaf`, the nodes marked in it
+/// are left as leaves while the others reach the rest, then the nodes reachable only through
+/// them are reached (the tree-cotree's second try round nodes of unpointed normal cone).
+void grow_tree(const Graph& g, std::size_t root, Tree& t, const std::vector<char>* leaf = nullptr) {
   t.parent[root] = kNone;
   t.parent_edge[root] = kNone;
   t.depth[root] = 0;
@@ -83,12 +66,13 @@ void grow_tree_avoiding(const Graph& g, std::size_t root, const std::vector<char
   std::vector<std::size_t> held;
   for (int phase = 0; phase < 2; ++phase) {
     if (phase == 1) {
+      if (held.empty()) break;
       for (std::size_t v : held) t.order.push_back(v);
       held.clear();
     }
     while (head < t.order.size()) {
       const std::size_t v = t.order[head++];
-      if (phase == 0 && leaf[v] != 0 && v != root) {
+      if (phase == 0 && leaf != nullptr && (*leaf)[v] != 0 && v != root) {
         held.push_back(v);
         continue;
       }
@@ -380,10 +364,7 @@ HandleDiagnosis diagnose_handles(const SurfaceMesh& mesh, const HandleOptions& o
     Tree tree = empty_tree(n);
     for (std::size_t v = 0; v < n; ++v) {
       if (node_component[v] == kNone || tree.depth[v] != kNone) continue;
-      if (avoid)
-        grow_tree_avoiding(g, v, unpointed, tree);
-      else
-        grow_tree(g, v, tree);
+      grow_tree(g, v, tree, avoid ? &unpointed : nullptr);
     }
     std::vector<char> in_tree(num_edges, 0);
     for (std::size_t v = 0; v < n; ++v)

@@ -6,13 +6,13 @@
 /// along g quad-meshed discs, one per handle cycle found by `diagnose_handles`: the disc is a
 /// grid whose boundary is the cycle (corners where the cycle turns most), its nodes placed
 /// by transfinite interpolation of the cycle, or a loop-following chord disc (its dual chords
-/// pair the cycle's crossings of each loop, so that crossing loops are not merged). Cutting along it duplicates the cycle's nodes and
-/// the disc (one copy on each side), which lowers the genus by one; the cut ball is woven with
-/// every node of the cut surface fixed (the weave takes them as input nodes), then the two
-/// copies are glued back by identifying their nodes: the disc's nodes become interior nodes
-/// of the final mesh. A disc choice whose cut surface has a self-intersecting loop, whose
-/// weave is blocked or whose glued complex breaks an invariant is discarded and the next is
-/// tried. docs/topology.md explains the choices.
+/// pair the cycle's crossings of each loop, so that crossing loops are not merged). Cutting along
+/// it duplicates the cycle's nodes and the disc (one copy on each side), which lowers the genus by
+/// one; the cut ball is woven with every node of the cut surface fixed (the weave takes them as
+/// input nodes), then the two copies are glued back by identifying their nodes: the disc's nodes
+/// become interior nodes of the final mesh. A disc choice whose cut surface has a self-intersecting
+/// loop, whose weave is blocked or whose glued complex breaks an invariant is discarded and the
+/// next is tried. docs/topology.md explains the choices.
 
 #include <cstddef>
 #include <functional>
@@ -45,6 +45,9 @@ struct CutOptions {
   /// such balls (`weave_solids_self_crossing`, self_crossing.hpp). False: every cut surface
   /// with a self-intersecting loop is discarded.
   bool allow_self_crossing = false;
+  /// Try the slab route (docs/topology.md, "Slabs") before the disc search instead of after
+  /// it: each handle's band of quads closed by two discs and woven on its own.
+  bool slab_first = false;
 };
 
 /// One handle cut: where, with which disc, after how many attempts.
@@ -53,7 +56,9 @@ struct HandleCut {
   int grid_a = 0;             ///< the disc is a grid_a x grid_b grid of quads
   int grid_b = 0;
   /// The disc, in words: "3x3" (a grid), "3x3 O-grid", "loop-following (14 quads)" (a chord
-  /// disc pairing the crossings of each loop, grid_a = grid_b = 0), "annulus 1x4" (a cavity).
+  /// disc pairing the crossings of each loop, grid_a = grid_b = 0), "annulus 1x4" (a cavity),
+  /// "slab: A and B, N hexes" (the slab route: the discs on the cycle and on the band's other
+  /// boundary, and the slab's hexes).
   std::string disc;
   std::size_t attempts = 0;  ///< disc choices tried, loop-checked or woven (the last was kept)
 };

@@ -1,0 +1,40 @@
+// The slab route on the shared corpus (label `corpus`): Gmsh's triangle-split part with a
+// hole, whose disc cuts all glue into invalid complexes (the two copies of a disc node).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "stcweave/primal/cut.hpp"
+#include "stcweave/primal/io.hpp"
+#include "stcweave/primal/pipeline.hpp"
+#include "stcweave/stc/validate.hpp"
+#include "support/corpus.hpp"
+
+namespace stcweave {
+namespace {
+
+TEST(CorpusGenus3, PartA6IsMeshedByTheSlabRouteIntoACertifiedComplex) {
+  const auto path = test::shared_data() / "gmsh/part_a6_trisubdiv_coarse.obj";
+  if (!std::filesystem::exists(path)) {
+    if (test::shared_data_required()) FAIL() << path << " missing";
+    GTEST_SKIP() << "shared data not found at " << STCWEAVE_SHARED_DATA;
+  }
+  const auto file = primal::read_mesh(path);
+  primal::SurfaceMesh surface = primal::surface_of(file);
+  primal::orient_outward(surface);
+  primal::MeshOptions options;
+  options.weave.rules = weave::RuleSet::Reliable;
+  options.cut.slab_first = true;  // what the default search reaches after its disc cuts fail
+  primal::SolidsReport report;
+  weave::WeaveResult woven;
+  ASSERT_NO_THROW(woven = primal::weave_solids(surface, options.weave, options.cut, &report));
+  const stc::ValidationReport v = stc::validate_hex_complex(woven.complex, &surface.surface);
+  EXPECT_TRUE(v.valid) << v.summary();
+  ASSERT_EQ(report.cuts.size(), 1u);
+  EXPECT_EQ(report.cuts[0].disc.rfind("slab: ", 0), 0u) << report.cuts[0].disc;
+  EXPECT_EQ(woven.hex_rule.size(), woven.complex.hexes.size());
+  EXPECT_EQ(woven.hex_shrink.size(), woven.complex.hexes.size());
+}
+
+}  // namespace
+}  // namespace stcweave
