@@ -795,7 +795,7 @@ std::optional<SlabRoute> slab_route(const CutSurface& solid,
     for (const weave::WeaveOptions& attempt : chain) {
       const auto t1 = std::chrono::steady_clock::now();
       try {
-        BallWeave w = weave_ball(s, attempt, first);
+        BallWeave w = weave_ball(s, attempt, first, cut_options);
         rep.weave_seconds += seconds_since(t1);
         return w;
       } catch (const WeaveError& e) {
