@@ -23,6 +23,7 @@
 #include "stcweave/stc/hex_complex.hpp"
 
 #include "node_hexes.hpp"
+#include "position_pinch.hpp"
 
 namespace stcweave::primal {
 namespace {
@@ -758,8 +759,45 @@ std::vector<ImpossibleCorner> impossible_corners(const HexMesh& mesh,
 namespace {
 
 /// The local max-min sweeps of the shape phase (see `improve_shape`).
+/// What the local max-min sweeps work for: raising the worst hexes of a valid mesh towards
+/// `shape_target` (the shape phase), or raising inverted hexes above 0 (`repair_inverted`).
+enum class LocalGoal { Shape, Repair };
+
+/// Marks the free nodes within `rings` hex rings of the hexes with scaled Jacobian <= 0:
+/// ring 0 is their own nodes, ring r + 1 adds the nodes of every hex around ring r.
+std::vector<bool> near_inverted(const std::vector<stc::Hex>& hexes, const std::vector<double>& sj,
+                                const NodeHexes& incidence, const std::vector<bool>& fixed,
+                                int rings) {
+  std::vector<bool> in(fixed.size(), false);
+  std::vector<std::size_t> layer;
+  for (std::size_t h = 0; h < hexes.size(); ++h) {
+    if (!(sj[h] <= 0.0)) continue;
+    for (const NodeId v : hexes[h]) {
+      if (in[v.index()]) continue;
+      in[v.index()] = true;
+      layer.push_back(v.index());
+    }
+  }
+  for (int r = 0; r < rings; ++r) {
+    std::vector<std::size_t> next;
+    for (const std::size_t v : layer) {
+      for (std::size_t i = incidence.start[v]; i < incidence.start[v + 1]; ++i) {
+        for (const NodeId w : hexes[incidence.around[i]]) {
+          if (in[w.index()]) continue;
+          in[w.index()] = true;
+          next.push_back(w.index());
+        }
+      }
+    }
+    layer = std::move(next);
+  }
+  for (std::size_t v = 0; v < in.size(); ++v) in[v] = in[v] && !fixed[v];
+  return in;
+}
+
 ShapeReport local_shape(HexMesh& mesh, const std::vector<bool>& fixed,
-                        const PositionOptions& options) {
+                        const PositionOptions& options, LocalGoal goal = LocalGoal::Shape) {
+  const bool repair = goal == LocalGoal::Repair;
   ShapeReport report;
   const std::size_t n = static_cast<std::size_t>(mesh.points.rows());
   if (fixed.size() != n)
@@ -777,11 +815,12 @@ ShapeReport local_shape(HexMesh& mesh, const std::vector<bool>& fixed,
   summary(report.min_scaled_jacobian_before, report.mean_scaled_jacobian_before);
   report.min_scaled_jacobian_after = report.min_scaled_jacobian_before;
   report.mean_scaled_jacobian_after = report.mean_scaled_jacobian_before;
-  if (options.max_shape_sweeps <= 0) {
+  const int max_sweeps = repair ? options.max_repair_sweeps : options.max_shape_sweeps;
+  if (max_sweeps <= 0) {
     report.stop = "off";
     return report;
   }
-  if (!hexes.empty() && !(report.min_scaled_jacobian_before > 0.0)) {
+  if (!repair && !hexes.empty() && !(report.min_scaled_jacobian_before > 0.0)) {
     report.stop = "inverted hexes: skipped";
     return report;
   }
@@ -804,6 +843,7 @@ ShapeReport local_shape(HexMesh& mesh, const std::vector<bool>& fixed,
   report.ran = true;
   // The hexes around node v: their smallest scaled Jacobian and their sum.
   struct Local {
+    std::size_t inverted = 0;  ///< hexes with scaled Jacobian <= 0
     double min = std::numeric_limits<double>::infinity();
     double sum = 0.0;
   };
@@ -811,13 +851,18 @@ ShapeReport local_shape(HexMesh& mesh, const std::vector<bool>& fixed,
     Local q;
     for (std::size_t i = start[v]; i < start[v + 1]; ++i) {
       const double x = hex_scaled_jacobian(mesh.points, hexes[around[i]]);
+      q.inverted += x <= 0.0 ? 1 : 0;
       q.min = std::min(q.min, x);
       q.sum += x;
     }
     return q;
   };
-  // Better: a larger minimum, or the same minimum (never a smaller one) and a larger sum.
+  // Better: fewer inverted hexes; with as many (never more), a larger minimum, or the same
+  // minimum (never a smaller one) and a larger sum. On a valid mesh (the shape phase) no
+  // hex is inverted before or after a move that keeps the minimum, so only the last two
+  // count there.
   const auto better = [](const Local& a, const Local& b) {
+    if (a.inverted != b.inverted) return a.inverted < b.inverted;
     return a.min > b.min + 1e-12 || (a.min >= b.min && a.sum > b.sum + 1e-9);
   };
   const auto at = [&](std::size_t v) -> Eigen::RowVector3d {
@@ -843,18 +888,33 @@ ShapeReport local_shape(HexMesh& mesh, const std::vector<bool>& fixed,
     for (double v : sj) sum += std::max(0.0, options.shape_target - v);
     return sum;
   };
+  const auto count_inverted = [&] {
+    return static_cast<std::size_t>(
+        std::count_if(sj.begin(), sj.end(), [](double v) { return !(v > 0.0); }));
+  };
+  // The repair looks for much smaller gains than the shape phase: finer steps.
+  const double smallest_step = repair ? 1e-6 : 1e-3;
   report.stop = "sweep limit";
-  for (int sweep = 0; sweep < options.max_shape_sweeps; ++sweep) {
+  for (int sweep = 0; sweep < max_sweeps; ++sweep) {
     const double min_before = report.min_scaled_jacobian_after;
     const double shortfall_before = shortfall();
-    if (min_before >= options.shape_target) {
+    const std::size_t inverted_before = count_inverted();
+    if (!repair && min_before >= options.shape_target) {
       report.stop = "target reached";
       break;
     }
+    if (repair && min_before > 0.0) {
+      report.stop = "repaired";
+      break;
+    }
     std::vector<bool> active(n, false);
-    for (std::size_t h = 0; h < hexes.size(); ++h)
-      if (sj[h] < options.shape_target)
-        for (const NodeId v : hexes[h]) active[v.index()] = !fixed[v.index()];
+    if (repair) {
+      active = near_inverted(hexes, sj, incidence, fixed, options.repair_rings);
+    } else {
+      for (std::size_t h = 0; h < hexes.size(); ++h)
+        if (sj[h] < options.shape_target)
+          for (const NodeId v : hexes[h]) active[v.index()] = !fixed[v.index()];
+    }
     // Worst first: the nodes of the poorest hexes are moved before their neighbours (ties in
     // node order, so the sweep is deterministic).
     std::vector<std::pair<double, std::size_t>> order;
@@ -901,7 +961,7 @@ ShapeReport local_shape(HexMesh& mesh, const std::vector<bool>& fixed,
         const Eigen::RowVector3d direction = g.normalized();
         const Eigen::RowVector3d from = at(v);
         bool taken = false;
-        for (double step = 0.2 * length; step > 1e-3 * length && !taken; step *= 0.5)
+        for (double step = 0.2 * length; step > smallest_step * length && !taken; step *= 0.5)
           taken = try_move(v, from + step * direction, current);
         moved = moved || taken;
       }
@@ -913,6 +973,19 @@ ShapeReport local_shape(HexMesh& mesh, const std::vector<bool>& fixed,
     }
     ++report.sweeps;
     summary(report.min_scaled_jacobian_after, report.mean_scaled_jacobian_after);
+    if (repair) {
+      if (report.min_scaled_jacobian_after > 0.0) {
+        report.stop = "repaired";
+        break;
+      }
+      // Settled: the sweep neither raised the worst hex nor lowered the inverted count.
+      if (report.min_scaled_jacobian_after <= min_before + 1e-12 &&
+          count_inverted() >= inverted_before) {
+        report.stop = "settled";
+        break;
+      }
+      continue;
+    }
     if (report.min_scaled_jacobian_after >= options.shape_target) {
       report.stop = "target reached";
       break;
@@ -975,6 +1048,44 @@ ShapeReport improve_shape(HexMesh& mesh, const std::vector<bool>& fixed,
   if (take_b) return b;
   mesh.points = after_a;
   return a;
+}
+
+RepairReport repair_inverted(HexMesh& mesh, const std::vector<bool>& fixed,
+                             const PositionOptions& options) {
+  RepairReport r;
+  const QualitySummary q = summarize_quality(mesh, 0);
+  r.inverted_before = r.inverted_after = q.inverted;
+  r.min_scaled_jacobian_before = r.min_scaled_jacobian_after = q.min_scaled_jacobian;
+  if (options.max_repair_sweeps <= 0) {
+    r.stop = "off";
+    return r;
+  }
+  if (q.inverted == 0) {
+    r.stop = "nothing inverted";
+    return r;
+  }
+  const Points start = mesh.points;
+  const ShapeReport local = local_shape(mesh, fixed, options, LocalGoal::Repair);
+  r.stop = local.stop;
+  if (!local.ran) return r;
+  r.sweeps = local.sweeps;
+  r.moves = local.moves;
+  const QualitySummary after = summarize_quality(mesh, 0);
+  if (after.inverted > q.inverted ||
+      (after.inverted == q.inverted && after.min_scaled_jacobian < q.min_scaled_jacobian)) {
+    // Cannot happen (a move changes only the hexes around its node, and is kept only when
+    // they have fewer inverted hexes, or as many and a better worst one); a safety net so
+    // that the repair never hands back a worse mesh than the untangling did.
+    mesh.points = start;
+    r.moves = 0;
+    r.stop += "; undone (" + std::to_string(after.inverted) + " inverted, min " +
+              std::to_string(after.min_scaled_jacobian) + ")";
+    return r;
+  }
+  r.ran = true;
+  r.inverted_after = after.inverted;
+  r.min_scaled_jacobian_after = after.min_scaled_jacobian;
+  return r;
 }
 
 PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
@@ -1174,6 +1285,17 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
     report.kept_start = true;
     after = summarize_quality(mesh, 0);
   }
+  if (after.inverted > 0 && report.free_nodes > 0) {
+    report.repair = repair_inverted(mesh, fixed, options);
+    if (report.repair.moves > 0) {
+      after = summarize_quality(mesh, 0);
+      report.stop += "; repair: " + std::to_string(report.repair.inverted_before) + " -> " +
+                     std::to_string(report.repair.inverted_after) + " inverted hexes (" +
+                     report.repair.stop + ")";
+    }
+  } else {
+    report.repair.stop = report.free_nodes > 0 ? "nothing inverted" : "no free node";
+  }
   report.min_scaled_jacobian_untangled = after.min_scaled_jacobian;
   report.mean_scaled_jacobian_untangled = after.mean_scaled_jacobian;
   report.shape = improve_shape(mesh, fixed, options);
@@ -1187,6 +1309,18 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
     if (after.per_hex[hx] <= 0.0) report.inverted.emplace_back(hx);
   }
   report.untangled = report.inverted_after == 0 && report.corners_inverted_after == 0;
+  if (report.inverted_after > 0) {
+    // Name the topology no placement can fix (docs/geometry.md "Repair").
+    const std::vector<PinchedFaces> pinched = pinched_faces(mesh.complex);
+    if (!pinched.empty()) {
+      const PinchedFaces& p = pinched.front();
+      report.stop += "; " + std::to_string(pinched.size()) +
+                     " pinched face pairs (two faces share two edges at a node, e.g. n" +
+                     std::to_string(p.a.value()) + "-" + p.node.str() + "-n" +
+                     std::to_string(p.b.value()) +
+                     ": a corner there is flat whatever the positions; topology)";
+    }
+  }
   report.validity.reserve(mesh.complex.hexes.size());
   for (const stc::Hex& h : mesh.complex.hexes) {
     const Validity v = hex_bezier_validity(mesh.points, h, options.certify_depth);

@@ -126,6 +126,12 @@ struct PositionOptions {
   /// Barrier pass: the nodes moved are those of the hexes whose scaled Jacobian is below
   /// min(shape_target, mesh minimum + barrier_window): the worst hexes first.
   double barrier_window = 0.2;
+  /// Repair after untangling (see `repair_inverted`): at most this many sweeps of local
+  /// max-min moves around the hexes still inverted; 0 switches the repair off.
+  int max_repair_sweeps = 100;
+  /// Repair: the nodes moved are the free nodes within this many hex rings of an inverted
+  /// hex (0: the inverted hexes' own nodes).
+  int repair_rings = 2;
 };
 
 /// What `raise_worst_corners` did.
@@ -203,6 +209,35 @@ struct ShapeReport {
 ShapeReport improve_shape(HexMesh& mesh, const std::vector<bool>& fixed,
                           const PositionOptions& options);
 
+/// What `repair_inverted` did.
+struct RepairReport {
+  bool ran = false;  ///< some hex was inverted and a free node could move
+  std::size_t sweeps = 0;
+  std::size_t moves = 0;  ///< accepted node moves
+  std::size_t inverted_before = 0;
+  std::size_t inverted_after = 0;
+  double min_scaled_jacobian_before = 0.0;
+  double min_scaled_jacobian_after = 0.0;
+  /// "repaired" (no hex inverted), "settled" (a sweep raised neither the minimum nor lowered
+  /// the inverted count), "sweep limit", "nothing inverted", "no free node", "off".
+  std::string stop;
+};
+
+/// Repair of the hexes the untangling left inverted (Verdict's scaled Jacobian, centre
+/// included, <= 0) when none of them is fixed by the boundary: the local max-min moves of
+/// `improve_shape` (smart Laplacian, then steps along the finite-difference gradients of the
+/// local minimum and sum, halving down to 1e-6 of the node's mean edge length), run on the
+/// free nodes within `repair_rings` hex rings of an inverted hex, worst first. A move is kept
+/// only when the smallest scaled Jacobian of the hexes around the node rises (or stays and
+/// their sum rises), so the mesh minimum never drops. The energy of `position_nodes` acts on
+/// the corner determinants only and stalls where a corner's barrier and its neighbours' pull
+/// balance (`real/mesquite/pave2.e`, extended: 2 hexes with one corner at -0.003, no fixed
+/// node); the max-min moves act on the scaled Jacobian itself. Stops when no hex is inverted,
+/// when a sweep gains nothing, or after `max_repair_sweeps`. Deterministic.
+/// \pre `fixed.size() == mesh.points.rows()`.
+RepairReport repair_inverted(HexMesh& mesh, const std::vector<bool>& fixed,
+                             const PositionOptions& options);
+
 /// A hex corner that no position of the free nodes can make positive.
 struct ImpossibleCorner {
   HexId hex;
@@ -257,7 +292,8 @@ struct PositionReport {
   /// Quality after untangling, before the shape phase.
   double min_scaled_jacobian_untangled = 0.0;
   double mean_scaled_jacobian_untangled = 0.0;
-  ShapeReport shape;  ///< the shape phase after untangling
+  RepairReport repair;  ///< the repair of hexes left inverted by the untangling
+  ShapeReport shape;    ///< the shape phase after untangling
 };
 
 /// The energy of one corner (see the file comment) for the edge matrix `edges` (columns
