@@ -1185,6 +1185,13 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
         passes[1].chain.push_back(o);
       }
     }
+    // The slab route is tried last and weaves at most a few balls: it keeps the recovery.
+    const std::vector<weave::WeaveOptions> slab_chain = passes[1].chain;
+    if (!cut_options.ball_block_recovery) {
+      for (Pass& pass : passes) {
+        for (weave::WeaveOptions& o : pass.chain) o.block_recovery = weave::BlockRecovery::Off;
+      }
+    }
     bool follow_first = false;
     const std::vector<weave::WeaveOptions>* chain = &passes[0].chain;
     std::optional<BallWeave> ball;
@@ -1296,7 +1303,7 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
       std::vector<std::vector<std::vector<NodeId>>> sets{primary};
       sets.insert(sets.end(), fallbacks.begin(), fallbacks.end());
       std::optional<SlabRoute> slab =
-          slab_route(solid, sets, passes[1].chain, cut_options, next_final, rep, &slab_why);
+          slab_route(solid, sets, slab_chain, cut_options, next_final, rep, &slab_why);
       if (!slab) return false;
       cuts = std::move(slab->cuts);
       ball = std::move(slab->ball);

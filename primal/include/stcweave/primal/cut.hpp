@@ -36,6 +36,13 @@ struct CutOptions {
   /// When the weave of a cut ball blocks, it is tried once more with up to this many one-face
   /// pillows at blocked nodes (`weave::WeaveOptions::recovery_pillows`); 0: no second try.
   std::size_t recovery_pillows = 16;
+  /// Run the weave's block recovery search (`weave::WeaveOptions::block_recovery`) in the
+  /// weaves of the disc search too. Off by default: those weaves have alternatives (other
+  /// discs, the reliable rules, recovery pillows, then the slab route, which keeps the
+  /// recovery for its few weaves), and a recovery
+  /// search on every blocked candidate made refusals take minutes (a plate with a hole from
+  /// CAD: 8 s without, over 5 min with). A shell without handles keeps the block recovery.
+  bool ball_block_recovery = false;
   /// Weaves one cut ball (a genus-0 surface over the cut surface's node ids, its points
   /// included); empty: `weave::weave` with the dihedral angles of the extended rule set. The
   /// result must have the layout of a plain weave's (the surface's nodes first).
