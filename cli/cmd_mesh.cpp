@@ -385,9 +385,7 @@ int run_mesh(const MeshArgs& a) {
     // Shells woven separately and handle cuts (issue 12); `weave` seconds above include them.
     nlohmann::json cuts = nlohmann::json::array();
     for (const primal::HandleCut& c : r.solids.cuts) {
-      cuts.push_back({{"cycle_edges", c.cycle.size()},
-                      {"disc", c.disc},
-                      {"attempts", c.attempts}});
+      cuts.push_back({{"cycle_edges", c.cycle.size()}, {"disc", c.disc}, {"attempts", c.attempts}});
     }
     report["solids"] = {{"solids", r.solids.solids},
                         {"cuts", cuts},

@@ -95,6 +95,12 @@ struct FamilyCase {
   std::size_t recovered_extended;
 };
 
+/// The quad count names a case (in gtest's and ctest's test names).
+// NOLINTNEXTLINE(readability-identifier-naming): gtest looks the printer up by this name.
+void PrintTo(const FamilyCase& c, std::ostream* os) {
+  *os << c.quads << "_quads";
+}
+
 class SphereFamily : public ::testing::TestWithParam<FamilyCase> {};
 
 TEST_P(SphereFamily, BlockedCountsArePinned) {
