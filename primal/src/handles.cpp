@@ -575,56 +575,58 @@ HandleDiagnosis diagnose_handles(const SurfaceMesh& mesh, const HandleOptions& o
   // Per class, each root's best candidate (for alternative representatives).
   std::map<Bits, std::vector<Candidate>> per_root;
   std::map<Bits, Candidate> root_best;
-  // Flat per-node class prefixes and one tree reused for every root (only the visited nodes
-  // are reset): no allocation per node and root.
-  std::vector<std::uint64_t> prefix(n * words, 0);
-  Tree t = empty_tree(n);
-  Bits x(words, 0);
-  for (std::size_t r = 0; r < roots.size(); ++r) {
-    for (std::size_t v : t.order) t.depth[v] = kNone;
-    t.order.clear();
-    root_best.clear();
-    grow_tree(g, roots[r], t);
-    for (std::size_t v : t.order) {
-      std::uint64_t* pv = &prefix[v * words];
-      if (t.parent[v] == kNone) {
-        std::fill(pv, pv + words, 0);
-      } else {
-        const std::uint64_t* pp = &prefix[t.parent[v] * words];
-        const Bits& m = mask[t.parent_edge[v]];
-        for (std::size_t k = 0; k < words; ++k) pv[k] = pp[k] ^ m[k];
-      }
-    }
-    for (std::size_t v : t.order) {
-      for (const auto& [w, e] : g.adj[v]) {
-        if (w < v || t.parent_edge[w] == e || t.parent_edge[v] == e) continue;
-        for (std::size_t k = 0; k < words; ++k)
-          x[k] = prefix[v * words + k] ^ prefix[w * words + k] ^ mask[e][k];
-        if (is_zero(x) || !bounds_inside(x)) continue;
-        const Candidate c{cycle_length(t, v, w), r, v, w};
-        auto rb = root_best.find(x);
-        if (rb == root_best.end()) {
-          root_best.emplace(x, c);
-        } else if (std::tie(c.length, c.u, c.w) <
-                   std::tie(rb->second.length, rb->second.u, rb->second.w)) {
-          rb->second = c;
-        }
-        auto it = best.find(x);
-        if (it == best.end()) {
-          best.emplace(x, c);
-        } else if (std::tie(c.length, c.root, c.u, c.w) <
-                   std::tie(it->second.length, it->second.root, it->second.u, it->second.w)) {
-          it->second = c;
+  {  // the scan's tree and class buffer end with it (the basis below has its own)
+    // Flat per-node class prefixes and one tree reused for every root (only the visited nodes
+    // are reset): no allocation per node and root.
+    std::vector<std::uint64_t> prefix(n * words, 0);
+    Tree t = empty_tree(n);
+    Bits x(words, 0);
+    for (std::size_t r = 0; r < roots.size(); ++r) {
+      for (std::size_t v : t.order) t.depth[v] = kNone;
+      t.order.clear();
+      root_best.clear();
+      grow_tree(g, roots[r], t);
+      for (std::size_t v : t.order) {
+        std::uint64_t* pv = &prefix[v * words];
+        if (t.parent[v] == kNone) {
+          std::fill(pv, pv + words, 0);
+        } else {
+          const std::uint64_t* pp = &prefix[t.parent[v] * words];
+          const Bits& m = mask[t.parent_edge[v]];
+          for (std::size_t k = 0; k < words; ++k) pv[k] = pp[k] ^ m[k];
         }
       }
-    }
-    for (const auto& [cls, c] : root_best) {
-      auto& list = per_root[cls];
-      list.push_back(c);
-      std::sort(list.begin(), list.end(), [](const Candidate& p, const Candidate& q) {
-        return std::tie(p.length, p.root, p.u, p.w) < std::tie(q.length, q.root, q.u, q.w);
-      });
-      if (list.size() > kAlternativePool) list.pop_back();
+      for (std::size_t v : t.order) {
+        for (const auto& [w, e] : g.adj[v]) {
+          if (w < v || t.parent_edge[w] == e || t.parent_edge[v] == e) continue;
+          for (std::size_t k = 0; k < words; ++k)
+            x[k] = prefix[v * words + k] ^ prefix[w * words + k] ^ mask[e][k];
+          if (is_zero(x) || !bounds_inside(x)) continue;
+          const Candidate c{cycle_length(t, v, w), r, v, w};
+          auto rb = root_best.find(x);
+          if (rb == root_best.end()) {
+            root_best.emplace(x, c);
+          } else if (std::tie(c.length, c.u, c.w) <
+                     std::tie(rb->second.length, rb->second.u, rb->second.w)) {
+            rb->second = c;
+          }
+          auto it = best.find(x);
+          if (it == best.end()) {
+            best.emplace(x, c);
+          } else if (std::tie(c.length, c.root, c.u, c.w) <
+                     std::tie(it->second.length, it->second.root, it->second.u, it->second.w)) {
+            it->second = c;
+          }
+        }
+      }
+      for (const auto& [cls, c] : root_best) {
+        auto& list = per_root[cls];
+        list.push_back(c);
+        std::sort(list.begin(), list.end(), [](const Candidate& p, const Candidate& q) {
+          return std::tie(p.length, p.root, p.u, p.w) < std::tie(q.length, q.root, q.u, q.w);
+        });
+        if (list.size() > kAlternativePool) list.pop_back();
+      }
     }
   }
   std::vector<std::pair<Candidate, Bits>> sorted;
