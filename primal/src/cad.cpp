@@ -799,34 +799,11 @@ void add_plate_with_hole_blocks(double a, double b, double c) {
 /// the axis, and made conforming by OpenCASCADE's fragment.
 void add_torus_blocks(double major, double minor) {
   namespace occ = gmsh::model::occ;
-  const double half = minor / 2.5;
-  const double diagonal = minor / std::sqrt(2.0);
-  const std::array<std::array<double, 2>, 4> directions = {
-      {{1.0, -1.0}, {1.0, 1.0}, {-1.0, 1.0}, {-1.0, -1.0}}};  // (x - major, z), turning
-  const int centre = occ::addPoint(major, 0, 0);
-  std::array<int, 4> core{};
-  std::array<int, 4> rim{};
-  for (std::size_t k = 0; k < 4; ++k) {
-    core[k] = occ::addPoint(major + half * directions[k][0], 0, half * directions[k][1]);
-    rim[k] = occ::addPoint(major + diagonal * directions[k][0], 0, diagonal * directions[k][1]);
-  }
-  std::array<int, 4> side{};
-  std::array<int, 4> cut{};
-  std::array<int, 4> arc{};
-  for (std::size_t k = 0; k < 4; ++k) {
-    const std::size_t n = (k + 1) % 4;
-    side[k] = occ::addLine(core[k], core[n]);
-    cut[k] = occ::addLine(core[k], rim[k]);
-    arc[k] = occ::addCircleArc(rim[k], centre, rim[n]);
-  }
-  gmsh::vectorpair section;
-  section.emplace_back(
-      2, occ::addPlaneSurface({occ::addCurveLoop({side[0], side[1], side[2], side[3]})}));
-  for (std::size_t k = 0; k < 4; ++k) {
-    const std::size_t n = (k + 1) % 4;
-    const int loop = occ::addCurveLoop({side[k], cut[n], -arc[k], -cut[k]});
-    section.emplace_back(2, occ::addPlaneSurface({loop}));
-  }
+  // The tube's section in the plane y = 0 around (major, 0, 0): (u, v) = (x - major, z).
+  const gmsh::vectorpair section =
+      cad_detail::add_ogrid_section(minor, [major](double u, double v) {
+        return std::array<double, 3>{major + u, 0, v};
+      });
   const double quarter = std::acos(-1.0) / 2;
   gmsh::vectorpair swept;
   occ::revolve(section, 0, 0, 0, 0, 0, 1, quarter, swept);

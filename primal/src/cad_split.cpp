@@ -96,20 +96,24 @@ gmsh::vectorpair volumes_of(const gmsh::vectorpair& dim_tags) {
   return out;
 }
 
-/// An O-grid cylinder of radius `r` and height `h` along z from the origin: a square core of
-/// half side r / 2.5 and four ring pieces (a core side, two diagonal cuts, a quarter of the
-/// circle), extruded and made conforming. Returns the blocks.
-gmsh::vectorpair add_ogrid_cylinder(double r, double h) {
+}  // namespace
+
+gmsh::vectorpair add_ogrid_section(double r,
+                                   const std::function<std::array<double, 3>(double, double)>& at) {
   const double half = r / 2.5;
   const double diagonal = r / std::sqrt(2.0);
   const std::array<std::array<double, 2>, 4> directions = {
       {{1.0, -1.0}, {1.0, 1.0}, {-1.0, 1.0}, {-1.0, -1.0}}};
-  const int centre = occ::addPoint(0, 0, 0);
+  const auto point = [&](double u, double v) {
+    const std::array<double, 3> x = at(u, v);
+    return occ::addPoint(x[0], x[1], x[2]);
+  };
+  const int centre = point(0, 0);
   std::array<int, 4> core{};
   std::array<int, 4> rim{};
   for (std::size_t k = 0; k < 4; ++k) {
-    core[k] = occ::addPoint(half * directions[k][0], half * directions[k][1], 0);
-    rim[k] = occ::addPoint(diagonal * directions[k][0], diagonal * directions[k][1], 0);
+    core[k] = point(half * directions[k][0], half * directions[k][1]);
+    rim[k] = point(diagonal * directions[k][0], diagonal * directions[k][1]);
   }
   std::array<int, 4> side{};
   std::array<int, 4> cut{};
@@ -128,6 +132,17 @@ gmsh::vectorpair add_ogrid_cylinder(double r, double h) {
     section.emplace_back(
         2, occ::addPlaneSurface({occ::addCurveLoop({side[k], cut[n], -arc[k], -cut[k]})}));
   }
+  return section;
+}
+
+namespace {
+/// An O-grid cylinder of radius `r` and height `h` along z from the origin: a square core of
+/// half side r / 2.5 and four ring pieces (a core side, two diagonal cuts, a quarter of the
+/// circle), extruded and made conforming. Returns the blocks.
+gmsh::vectorpair add_ogrid_cylinder(double r, double h) {
+  const gmsh::vectorpair section = add_ogrid_section(r, [](double u, double v) {
+    return std::array<double, 3>{u, v, 0};
+  });
   gmsh::vectorpair extruded;
   occ::extrude(section, 0, 0, h, extruded);
   const gmsh::vectorpair blocks = volumes_of(extruded);

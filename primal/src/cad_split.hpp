@@ -5,8 +5,10 @@
 /// faces take the transfinite recipe. Works on Gmsh's current model (OpenCASCADE kernel,
 /// synchronised); see docs/cad.md, "Splitting into blocks".
 
+#include <array>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace stcweave::primal::cad_detail {
@@ -34,5 +36,12 @@ struct SplitResult {
 [[nodiscard]] SplitResult split_into_blocks(const std::vector<std::pair<int, int> >& volumes,
                                             double diagonal,
                                             const std::function<bool(int)>& four_cornered);
+
+/// Adds the O-grid section of a disc of radius `r` to Gmsh's OpenCASCADE model: a square core
+/// of half side r / 2.5 and four ring pieces (a core side, two diagonal cuts, a quarter of the
+/// circle). `at(u, v)` places the section's point (u, v) in space (the centre is `at(0, 0)`).
+/// Returns the five plane surfaces, the core first; the caller extrudes or revolves them.
+[[nodiscard]] std::vector<std::pair<int, int> > add_ogrid_section(
+    double r, const std::function<std::array<double, 3>(double, double)>& at);
 
 }  // namespace stcweave::primal::cad_detail
