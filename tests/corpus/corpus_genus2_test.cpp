@@ -20,11 +20,8 @@ namespace {
 TEST(CorpusGenus2, PipeHelixIsUndecidedBecauseItsSurfaceIsNotEmbedded) {
   // Its generators meet a node of unpointed normal cone (n174); going round it is refused
   // because an edge pierces a quad there: the undecided reason says so.
+  STCWEAVE_SKIP_WITHOUT_SHARED_DATA();
   const auto path = test::shared_data() / "real/polycube-nightmares-quad/pipe_helix.msh";
-  if (!std::filesystem::exists(path)) {
-    if (test::shared_data_required()) FAIL() << path << " missing";
-    GTEST_SKIP() << "shared data not found at " << STCWEAVE_SHARED_DATA;
-  }
   const primal::SurfaceDiagnosis d = primal::diagnose(primal::read_mesh(path));
   ASSERT_TRUE(d.handles);
   EXPECT_FALSE(d.handles->decided);
@@ -34,11 +31,8 @@ TEST(CorpusGenus2, PipeHelixIsUndecidedBecauseItsSurfaceIsNotEmbedded) {
 }
 
 TEST(CorpusGenus2, FertilityIsCutAlongLoopFollowingDiscsIntoAValidComplex) {
+  STCWEAVE_SKIP_WITHOUT_SHARED_DATA();
   const auto path = test::shared_data() / "real/hexalab/evpc2016_Fertility_hex-small.vtk";
-  if (!std::filesystem::exists(path)) {
-    if (test::shared_data_required()) FAIL() << path << " missing";
-    GTEST_SKIP() << "shared data not found at " << STCWEAVE_SHARED_DATA;
-  }
   const auto file = primal::read_mesh(path);
   primal::SurfaceMesh surface = primal::surface_of(file);
   primal::orient_outward(surface);

@@ -14,11 +14,8 @@ namespace stcweave {
 namespace {
 
 TEST(CorpusGenus3, PartA6IsMeshedByTheSlabRouteIntoACertifiedComplex) {
+  STCWEAVE_SKIP_WITHOUT_SHARED_DATA();
   const auto path = test::shared_data() / "gmsh/part_a6_trisubdiv_coarse.obj";
-  if (!std::filesystem::exists(path)) {
-    if (test::shared_data_required()) FAIL() << path << " missing";
-    GTEST_SKIP() << "shared data not found at " << STCWEAVE_SHARED_DATA;
-  }
   const auto file = primal::read_mesh(path);
   primal::SurfaceMesh surface = primal::surface_of(file);
   primal::orient_outward(surface);
