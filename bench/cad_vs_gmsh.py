@@ -15,8 +15,9 @@ section), written as STEP by data/make_cad_examples.py:
   hexes have edges ~H too, and its boundary is the same kind of surface as our triangle-split
   recipe (Gmsh's algorithm-6 triangles at 2H, each split into 3 quads).
 Ours runs once per rule set (--rules, default: extended and reliable). The front end splits the
-one-solid cylinder, sphere and L-block into blocks itself (docs/cad.md, "Splitting into
-blocks"); --mesh-args --no-cad-split gives the rows without that split.
+one-solid cylinder, sphere, L-block, plate with a hole and torus into blocks itself
+(docs/cad.md, "Splitting into blocks"); --mesh-args --no-cad-split gives the rows without that
+split.
 Both meshes are certified with `stcweave check` and measured with `stcweave quality` (Verdict
 scaled Jacobian); times are wall-clock seconds of the whole command (CAD reading included).
 Prints a Markdown table (and writes it to OUT/table.md), whose last column says whether ours

@@ -4,7 +4,9 @@
     data/make_cad_examples.py              writes data/plate_slot.step, data/lblock_blocks.step,
                                            data/plate_hole_blocks.step, data/torus_blocks.step,
                                            data/open_shell.step, data/closed_shell.step and
-                                           data/cylinder_tilted.step
+                                           data/cylinder_tilted.step, data/torus_tilted.step,
+                                           data/plate_hole_tilted.step and
+                                           data/plate_blind_hole.step
     data/make_cad_examples.py --shapes DIR writes the .step files of SHAPES into DIR (for
                                            bench/cad_vs_gmsh.py): cube, lblock, cylinder,
                                            sphere, plate_hole and torus as one solid each, and
@@ -23,6 +25,12 @@ as an O-grid and swept in four quarter turns, every face four-sided. (The same t
 solid each, plate_hole and torus of --shapes, have faces without four corners.)
 cylinder_tilted.step: a cylinder of radius 0.5 and height 1 whose axis runs from (0.2, 0.1, 0)
 along (1, 2, 2) / 3, not along a coordinate axis (the O-grid split must follow it).
+torus_tilted.step: the torus of torus_blocks.step as one solid (one toroidal face), its axis
+along (2, -1, 2) / 3 through (0.3, -0.2, 0.5) (the split into blocks must find both).
+plate_hole_tilted.step: a 4 x 2 x 0.5 plate with a through-hole of radius 0.4 off its centre
+(at (1.3, 0.8)), one solid, turned so that its normal is (1, 2, 2) / 3 and moved by
+(0.1, 0.2, 0.3). plate_blind_hole.step: the plate of plate_hole_blocks.step as one solid with
+a blind hole instead (radius 0.5, 0.3 deep from the top face; genus 0).
 open_shell.step: a unit cube's boundary with one face missing: five faces and no volume, the
 input stcweave must refuse ("not a closed solid"); closed_shell.step: all six faces and no
 volume, which stcweave sews into a solid (as IGES files, which rarely hold solids, need).
@@ -52,6 +60,31 @@ def plate_slot(occ):
 
 def cylinder_tilted(occ):
     occ.addCylinder(0.2, 0.1, 0, 1 / 3, 2 / 3, 2 / 3, 0.5)
+
+
+def turned_onto(occ, dim_tags, axis, origin):
+    """Turns dim_tags (built along z from the origin) so that z goes along the unit axis,
+    then moves the origin to origin."""
+    turn = (-axis[1], axis[0], 0.0)
+    occ.rotate(dim_tags, 0, 0, 0, turn[0], turn[1], turn[2], math.acos(axis[2]))
+    occ.translate(dim_tags, *origin)
+
+
+def torus_tilted(occ):
+    turned_onto(occ, [(3, occ.addTorus(0, 0, 0, 1, 0.4))], (2 / 3, -1 / 3, 2 / 3), (0.3, -0.2, 0.5))
+
+
+def plate_hole_tilted(occ):
+    plate = occ.addBox(0, 0, 0, 4, 2, 0.5)
+    hole = occ.addCylinder(1.3, 0.8, -0.5, 0, 0, 1.5, 0.4)
+    out, _ = occ.cut([(3, plate)], [(3, hole)])
+    turned_onto(occ, out, (1 / 3, 2 / 3, 2 / 3), (0.1, 0.2, 0.3))
+
+
+def plate_blind_hole(occ):
+    plate = occ.addBox(0, 0, 0, 4, 2, 0.5)
+    hole = occ.addCylinder(2, 1, 0.2, 0, 0, 1, 0.5)
+    occ.cut([(3, plate)], [(3, hole)])
 
 
 def open_shell(occ):
@@ -221,6 +254,9 @@ def main():
         write(os.path.join(here, "plate_hole_blocks.step"), plate_hole_blocks)
         write(os.path.join(here, "torus_blocks.step"), torus_blocks)
         write(os.path.join(here, "cylinder_tilted.step"), cylinder_tilted)
+        write(os.path.join(here, "torus_tilted.step"), torus_tilted)
+        write(os.path.join(here, "plate_hole_tilted.step"), plate_hole_tilted)
+        write(os.path.join(here, "plate_blind_hole.step"), plate_blind_hole)
     else:
         print(__doc__, file=sys.stderr)
         sys.exit(1)

@@ -792,36 +792,6 @@ void add_plate_with_hole_blocks(double a, double b, double c) {
   occ::fragment({pieces.front()}, gmsh::vectorpair(pieces.begin() + 1, pieces.end()), out, map);
 }
 
-/// A torus around the z axis (centre-line radius `major`, tube radius `minor`) as 20
-/// blocks: the tube's section in the plane y = 0 split as an O-grid (a square core of half
-/// side minor / 2.5 and four ring pieces, each bounded by a core side, two diagonal cuts
-/// and a quarter of the section circle), swept a quarter turn, copied three times around
-/// the axis, and made conforming by OpenCASCADE's fragment.
-void add_torus_blocks(double major, double minor) {
-  namespace occ = gmsh::model::occ;
-  // The tube's section in the plane y = 0 around (major, 0, 0): (u, v) = (x - major, z).
-  const gmsh::vectorpair section =
-      cad_detail::add_ogrid_section(minor, [major](double u, double v) {
-        return std::array<double, 3>{major + u, 0, v};
-      });
-  const double quarter = std::acos(-1.0) / 2;
-  gmsh::vectorpair swept;
-  occ::revolve(section, 0, 0, 0, 0, 0, 1, quarter, swept);
-  gmsh::vectorpair blocks;
-  for (const auto& dt : swept)
-    if (dt.first == 3) blocks.push_back(dt);
-  const gmsh::vectorpair first = blocks;
-  for (int turn = 1; turn < 4; ++turn) {
-    gmsh::vectorpair copy;
-    occ::copy(first, copy);
-    occ::rotate(copy, 0, 0, 0, 0, 0, 1, turn * quarter);
-    blocks.insert(blocks.end(), copy.begin(), copy.end());
-  }
-  gmsh::vectorpair out;
-  std::vector<gmsh::vectorpair> map;
-  occ::fragment({blocks.front()}, gmsh::vectorpair(blocks.begin() + 1, blocks.end()), out, map);
-}
-
 /// Runs `body` with the Gmsh session locked, a fresh model and the logger on; always
 /// clears the model afterwards.
 template <typename Body>
@@ -996,7 +966,7 @@ CadSurface mesh_cad_surface(const CadPrimitive& primitive, const CadOptions& opt
           break;
         case CadPrimitive::Kind::TorusBlocks:
           record.path = "generated torus of 20 blocks";
-          add_torus_blocks(a, b);
+          (void)cad_detail::add_torus_blocks(a, b);
           break;
       }
       gmsh::model::occ::synchronize();

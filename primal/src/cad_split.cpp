@@ -43,6 +43,19 @@ double norm(const Vec& a) {
   return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
 }
 
+Vec add(const Vec& a, const Vec& b) {
+  return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
+}
+Vec scaled(const Vec& a, double s) {
+  return {s * a[0], s * a[1], s * a[2]};
+}
+double dot(const Vec& a, const Vec& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+Vec cross(const Vec& a, const Vec& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
 bool near(double value, double expected, double relative) {
   return std::abs(value - expected) <= relative * std::max(std::abs(expected), 1e-300);
 }
@@ -133,6 +146,42 @@ gmsh::vectorpair add_ogrid_section(double r,
         2, occ::addPlaneSurface({occ::addCurveLoop({side[k], cut[n], -arc[k], -cut[k]})}));
   }
   return section;
+}
+
+gmsh::vectorpair add_torus_blocks(double major, double minor) {
+  // The tube's section in the plane y = 0 around (major, 0, 0): (u, v) = (x - major, z).
+  const gmsh::vectorpair section = add_ogrid_section(minor, [major](double u, double v) {
+    return std::array<double, 3>{major + u, 0, v};
+  });
+  // Four quarter turns, each swept from the end faces of the one before (Gmsh lists each
+  // swept entity's end just before its volume), so that consecutive quarters share their
+  // faces; only the last quarter's end, which lies on the first section, is glued by
+  // fragment, of the first and the last quarter alone (a fragment of all 20 blocks took six
+  // times as long: OpenCASCADE's booleans on surfaces of revolution are slow).
+  const double quarter = kPi / 2;
+  gmsh::vectorpair from = section;
+  std::vector<gmsh::vectorpair> quarters;
+  for (int turn = 0; turn < 4; ++turn) {
+    gmsh::vectorpair swept;
+    occ::revolve(from, 0, 0, 0, 0, 0, 1, quarter, swept);
+    gmsh::vectorpair ends;
+    gmsh::vectorpair blocks;
+    for (std::size_t i = 1; i < swept.size(); ++i) {
+      if (swept[i].first == 3) {
+        blocks.push_back(swept[i]);
+        ends.push_back(swept[i - 1]);
+      }
+    }
+    quarters.push_back(blocks);
+    from = ends;
+  }
+  gmsh::vectorpair out;
+  std::vector<gmsh::vectorpair> map;
+  occ::fragment(quarters.front(), quarters.back(), out, map);
+  gmsh::vectorpair all = volumes_of(out);
+  for (std::size_t turn = 1; turn + 1 < quarters.size(); ++turn)
+    all.insert(all.end(), quarters[turn].begin(), quarters[turn].end());
+  return all;
 }
 
 namespace {
@@ -291,6 +340,209 @@ std::pair<int, int> add_quad(const std::array<Vec, 4>& corners) {
   return {2, occ::addPlaneSurface({occ::addCurveLoop(lines)})};
 }
 
+/// Centre, unit axis and radii of a torus when the solid is one (one toroidal face). The
+/// tube radius is 2 V / A and the centre-line radius A / (4 pi^2 r) (area A = 4 pi^2 R r,
+/// volume V = 2 pi^2 R r^2); the matrix of inertia about the centre of mass (density 1) is
+/// then V (R^2 / 2 + 5 r^2 / 8) across the axis plus V (R^2 / 2 + r^2 / 8) along it, which
+/// gives the axis and is checked entry by entry (1e-6 of the largest moment).
+bool is_torus(int volume, const std::vector<int>& faces, Vec& centre, Vec& axis, double& major,
+              double& minor) {
+  if (faces.size() != 1 || types_of(2, faces) != std::vector<std::string>{"Torus"}) return false;
+  const double area = mass_of(2, faces[0]);
+  const double v = mass_of(3, volume);
+  if (!(area > 0.0) || !(v > 0.0)) return false;
+  minor = 2.0 * v / area;
+  major = area / (4.0 * kPi * kPi * minor);
+  if (!(minor < major)) return false;
+  centre = centre_of(3, volume);
+  std::vector<double> m;
+  occ::getMatrixOfInertia(3, volume, m);
+  if (m.size() != 9) return false;
+  const double across = v * (major * major / 2 + 5.0 * minor * minor / 8);
+  const double along = v * (major * major / 2 + minor * minor / 8);  // the axial moment less across
+  // m - across I = along a a^T: the axis is its largest column, normalised.
+  std::size_t k = 0;
+  for (std::size_t i = 1; i < 3; ++i)
+    if (m[4 * i] > m[4 * k]) k = i;
+  Vec col = {m[k], m[3 + k], m[6 + k]};
+  col[k] -= across;
+  const double n = norm(col);
+  if (!(n > 0.0)) return false;
+  axis = scaled(col, 1.0 / n);
+  const double tol = 1e-6 * (across + along);
+  for (std::size_t i = 0; i < 3; ++i) {
+    for (std::size_t j = 0; j < 3; ++j) {
+      const double expected = (i == j ? across : 0.0) + along * axis[i] * axis[j];
+      if (std::abs(m[3 * i + j] - expected) > tol) return false;
+    }
+  }
+  return true;
+}
+
+/// Fragments `copy` (a copy of `volumes`) with the surfaces `tools` and removes the tools'
+/// pieces outside the solid. Returns the blocks when every face of their union has four corners;
+/// otherwise removes everything made since `before` and returns none.
+gmsh::vectorpair cut_into_blocks(const gmsh::vectorpair& volumes, const gmsh::vectorpair& copy,
+                                 const gmsh::vectorpair& tools,
+                                 const std::set<std::pair<int, int> >& before,
+                                 const std::function<bool(int)>& four_cornered) {
+  gmsh::vectorpair out;
+  std::vector<gmsh::vectorpair> map;
+  occ::fragment(copy, tools, out, map);
+  occ::synchronize();
+  // The pieces of the tools outside the solid bound no volume: removed.
+  gmsh::vectorpair free_faces;
+  for (const auto& dt : out) {
+    if (dt.first != 2) continue;
+    std::vector<int> up;
+    std::vector<int> down;
+    gmsh::model::getAdjacencies(2, dt.second, up, down);
+    if (up.empty()) free_faces.push_back(dt);
+  }
+  if (!free_faces.empty()) occ::remove(free_faces, true);
+  occ::synchronize();
+  gmsh::vectorpair blocks = volumes_of(out);
+  const std::vector<int> block_faces = union_faces(blocks);
+  if (!std::all_of(block_faces.begin(), block_faces.end(), four_cornered)) {
+    remove_new(before);
+    return {};
+  }
+  occ::remove(volumes, true);
+  occ::synchronize();
+  return blocks;
+}
+
+/// The hole of a solid of planar faces and straight edges with one through-hole: one full
+/// cylindrical face bounded by two circles of equal radius whose centres give the axis
+/// (area 2 pi r h, 1e-6), every other curve a line, no face bounded by a circle alone (that
+/// is a blind hole's bottom). `base` is the centre of the first circle.
+bool is_plate_with_hole(const gmsh::vectorpair& volumes, const std::vector<int>& faces, Vec& base,
+                        Vec& axis, double& r) {
+  int side = 0;
+  for (const int f : faces) {
+    std::string type;
+    gmsh::model::getType(2, f, type);
+    if (type == "Cylinder") {
+      if (side != 0) return false;
+      side = f;
+    } else if (type != "Plane") {
+      return false;
+    }
+  }
+  if (side == 0) return false;
+  gmsh::vectorpair curves;
+  gmsh::model::getBoundary({{2, side}}, curves, false, false, false);
+  std::vector<int> circles;
+  for (const auto& [d, t] : curves) {
+    std::string type;
+    gmsh::model::getType(1, std::abs(t), type);
+    if (type == "Circle") circles.push_back(std::abs(t));
+  }
+  std::sort(circles.begin(), circles.end());
+  circles.erase(std::unique(circles.begin(), circles.end()), circles.end());
+  if (circles.size() != 2) return false;
+  std::array<Vec, 2> centres{};
+  std::array<double, 2> radii{};
+  for (std::size_t k = 0; k < 2; ++k) {
+    gmsh::vectorpair ends;
+    gmsh::model::getBoundary({{1, circles[k]}}, ends, false, false, false);
+    if (ends.empty()) return false;
+    for (const auto& e : ends)
+      if (std::abs(e.second) != std::abs(ends.front().second)) return false;  // not closed
+    centres[k] = centre_of(1, circles[k]);
+    radii[k] = mass_of(1, circles[k]) / (2 * kPi);
+    std::vector<double> p;
+    gmsh::model::getValue(0, std::abs(ends.front().second), {}, p);
+    if (!near(norm(sub({p[0], p[1], p[2]}, centres[k])), radii[k], 1e-6)) return false;
+  }
+  r = radii[0];
+  if (!(r > 0.0) || !near(radii[1], r, 1e-6)) return false;
+  base = centres[0];
+  const Vec d = sub(centres[1], base);
+  const double h = norm(d);
+  if (!(h > 0.0) || !near(mass_of(2, side), 2 * kPi * r * h, 1e-6)) return false;
+  axis = scaled(d, 1.0 / h);
+  gmsh::vectorpair all_curves;
+  gmsh::model::getBoundary(volumes, all_curves, false, false, true);
+  for (const auto& [dim, t] : all_curves) {
+    if (dim != 1 || std::abs(t) == circles[0] || std::abs(t) == circles[1]) continue;
+    std::string type;
+    gmsh::model::getType(1, std::abs(t), type);
+    if (type != "Line") return false;
+  }
+  for (const int f : faces) {
+    gmsh::vectorpair bounds;
+    gmsh::model::getBoundary({{2, f}}, bounds, true, false, false);
+    if (bounds.size() == 1 &&
+        (std::abs(bounds[0].second) == circles[0] || std::abs(bounds[0].second) == circles[1]))
+      return false;
+  }
+  return true;
+}
+
+/// Cuts a solid with a through-hole (`is_plate_with_hole`) by the half-planes from the
+/// hole's axis through each of its corners and through the hole's seam (the circles'
+/// points: OpenCASCADE keeps them as corners of the hole's pieces), at most 16; "" and
+/// `dropped` set when the blocks do not all have four-cornered faces.
+std::string cut_around_hole(const gmsh::vectorpair& volumes, const Vec& base, const Vec& axis,
+                            double diagonal, const std::function<bool(int)>& four_cornered,
+                            std::string& dropped) {
+  // A frame across the axis.
+  Vec e1 = std::abs(axis[0]) < 0.9 ? Vec{1, 0, 0} : Vec{0, 1, 0};
+  e1 = sub(e1, scaled(axis, dot(e1, axis)));
+  e1 = scaled(e1, 1.0 / norm(e1));
+  const Vec e2 = cross(axis, e1);
+  gmsh::vectorpair points;
+  gmsh::model::getBoundary(volumes, points, false, false, true);
+  std::vector<double> angles;
+  double lo = 1e300;
+  double hi = -1e300;
+  for (const auto& [d, t] : points) {
+    if (d != 0) continue;
+    std::vector<double> p;
+    gmsh::model::getValue(0, std::abs(t), {}, p);
+    const Vec w = sub({p[0], p[1], p[2]}, base);
+    const double along = dot(w, axis);
+    lo = std::min(lo, along);
+    hi = std::max(hi, along);
+    const Vec across = sub(w, scaled(axis, along));
+    if (norm(across) > 1e-6 * diagonal)
+      angles.push_back(std::atan2(dot(across, e2), dot(across, e1)));
+  }
+  std::sort(angles.begin(), angles.end());
+  const double tol = 1e-7;
+  angles.erase(
+      std::unique(angles.begin(), angles.end(), [tol](double a, double b) { return b - a <= tol; }),
+      angles.end());
+  if (angles.size() > 1 && angles.back() - angles.front() >= 2 * kPi - tol) angles.pop_back();
+  if (angles.size() < 2) return "";
+  if (angles.size() > 16) {
+    dropped = "a solid with a through-hole, but " + std::to_string(angles.size()) +
+              " half-planes from the hole's axis through its corners (more than 16)";
+    return "";
+  }
+  const auto before = occ_entities();
+  const double margin = 0.1 * diagonal;
+  const Vec bottom = add(base, scaled(axis, lo - margin));
+  const Vec top = add(base, scaled(axis, hi + margin));
+  gmsh::vectorpair copy;
+  occ::copy(volumes, copy);
+  gmsh::vectorpair tools;
+  for (const double angle : angles) {
+    const Vec out =
+        scaled(add(scaled(e1, std::cos(angle)), scaled(e2, std::sin(angle))), 2.0 * diagonal);
+    tools.push_back(add_quad({bottom, top, add(top, out), add(bottom, out)}));
+  }
+  const gmsh::vectorpair blocks = cut_into_blocks(volumes, copy, tools, before, four_cornered);
+  if (blocks.empty()) {
+    dropped = "a solid with a through-hole, cut by " + std::to_string(angles.size()) +
+              " half-planes through the hole's axis, but a face of the blocks has not 4 corners";
+    return "";
+  }
+  return "a solid with a through-hole, cut by " + std::to_string(angles.size()) +
+         " half-planes through the hole's axis into " + std::to_string(blocks.size()) + " blocks";
+}
+
 /// Cuts of a solid of planes and lines by the axis planes through its corners; "" and
 /// `dropped` set when it does not give blocks of four-cornered faces.
 std::string cut_by_corner_planes(const gmsh::vectorpair& volumes, const std::vector<int>& faces,
@@ -361,34 +613,13 @@ std::string cut_by_corner_planes(const gmsh::vectorpair& volumes, const std::vec
       tools.push_back(add_quad(c));
     }
   }
-  gmsh::vectorpair out;
-  std::vector<gmsh::vectorpair> map;
-  occ::fragment(copy, tools, out, map);
-  occ::synchronize();
-  // The pieces of the planes outside the solid bound no volume: removed.
-  gmsh::vectorpair free_faces;
-  for (const auto& dt : out) {
-    if (dt.first != 2) continue;
-    std::vector<int> up;
-    std::vector<int> down;
-    gmsh::model::getAdjacencies(2, dt.second, up, down);
-    if (up.empty()) free_faces.push_back(dt);
-  }
-  if (!free_faces.empty()) occ::remove(free_faces, true);
-  occ::synchronize();
-  const gmsh::vectorpair blocks = volumes_of(out);
-  const std::vector<int> block_faces = union_faces(blocks);
-  const auto bad = std::find_if(block_faces.begin(), block_faces.end(),
-                                [&](int f) { return !four_cornered(f); });
-  if (bad != block_faces.end()) {
+  const gmsh::vectorpair blocks = cut_into_blocks(volumes, copy, tools, before, four_cornered);
+  if (blocks.empty()) {
     dropped = "cut by " + std::to_string(planes) +
               " axis planes through its corners, but a face of the blocks still has not 4 "
               "corners";
-    remove_new(before);
     return "";
   }
-  occ::remove(volumes, true);
-  occ::synchronize();
   return "a solid of planar faces, cut by " + std::to_string(planes) +
          " axis planes through its corners into " + std::to_string(blocks.size()) + " blocks";
 }
@@ -416,6 +647,13 @@ SplitResult split_into_blocks(const std::vector<std::pair<int, int> >& volumes, 
       what = "a sphere, split as a cubed sphere of 7 blocks";
       blocks = add_cubed_sphere(r);
       occ::translate(blocks, base[0], base[1], base[2]);
+    } else if (volumes.size() == 1 && is_torus(volumes[0].second, faces, base, axis, r, h)) {
+      what = "a torus, split as 20 blocks of a revolved O-grid";
+      blocks = add_torus_blocks(r, h);  // r: centre-line radius, h: tube radius
+      place(blocks, axis, base);
+    } else if (volumes.size() == 1 && is_plate_with_hole(volumes, faces, base, axis, r)) {
+      result.how = cut_around_hole(volumes, base, axis, diagonal, four_cornered, result.dropped);
+      return result;
     } else {
       result.how = cut_by_corner_planes(volumes, faces, diagonal, four_cornered, result.dropped);
       return result;

@@ -28,6 +28,12 @@ struct SplitResult {
 ///   blocks (a square core and four ring pieces) along its axis;
 /// - one sphere: a cubed sphere of seven blocks (a core cube and six pieces, each with its own
 ///   copy of the ball turned so that the sphere's poles and seam are outside the piece);
+/// - one torus (a toroidal face; radii from its area and volume, axis from its inertia): the
+///   20 blocks of `add_torus_blocks`, turned onto its axis;
+/// - one solid of planar faces and straight edges with a through-hole (one full cylindrical
+///   face bounded by two circles): cut by the half-planes from the hole's axis through each
+///   corner of the solid and through the hole's seam, so that every block holds one piece of
+///   the hole and one side of the outline;
 /// - solids of planar faces and straight edges (`volumes` of them): cut by the planes
 ///   perpendicular to x, y and z through its corners that cross it (at most 12 planes), kept
 ///   only when every face of the union of the blocks has four corners.
@@ -43,5 +49,11 @@ struct SplitResult {
 /// Returns the five plane surfaces, the core first; the caller extrudes or revolves them.
 [[nodiscard]] std::vector<std::pair<int, int> > add_ogrid_section(
     double r, const std::function<std::array<double, 3>(double, double)>& at);
+
+/// Adds a torus around the z axis through the origin (centre-line radius `major`, tube
+/// radius `minor`) as 20 blocks: the tube's section in the plane y = 0 split as an O-grid
+/// (`add_ogrid_section`), swept a quarter turn, copied three times around the axis, and made
+/// conforming by OpenCASCADE's fragment. Returns the blocks.
+std::vector<std::pair<int, int> > add_torus_blocks(double major, double minor);
 
 }  // namespace stcweave::primal::cad_detail
