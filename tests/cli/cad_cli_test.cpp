@@ -94,6 +94,24 @@ TEST_F(CadCli, ATorusOfBlocksFromDataIsMeshedThroughItsHandle) {
   EXPECT_EQ(check.code, 0) << check.out;
 }
 
+TEST_F(CadCli, OneSolidTorusAndPlateWithAHoleAreSplitIntoBlocksAndMeshed) {
+  STCWEAVE_SKIP_WITHOUT_GMSH();
+  // One solid each (a toroidal face; planar faces and a cylindrical hole), not blocks.
+  for (const char* name : {"torus_tilted.step", "plate_hole_tilted.step"}) {
+    const auto [r, report] = mesh(data(name), name, "--size 0.25");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_THAT(r.out, HasSubstr("transfinite surface")) << name;
+    EXPECT_EQ(report["cad"]["volumes"], 1) << name;
+    EXPECT_EQ(report["cad"]["structured_faces"], report["cad"]["faces"]) << name;
+    EXPECT_THAT(report["cad"]["split"].get<std::string>(),
+                HasSubstr(std::string(name) == "torus_tilted.step" ? "a torus" : "half-planes"));
+    EXPECT_EQ(report["valid"], true) << name;
+    EXPECT_EQ(report["quality"]["inverted"], 0) << name;
+    const auto check = run_cli("check " + at(std::string(name) + ".vtk"));
+    EXPECT_EQ(check.code, 0) << check.out;
+  }
+}
+
 TEST_F(CadCli, RecipeAndTriangleAlgorithmCanBeChosen) {
   STCWEAVE_SKIP_WITHOUT_GMSH();
   const auto [r, report] =
