@@ -12,7 +12,8 @@
                                            sphere, plate_hole and torus as one solid each, and
                                            each of the last five but the cube also built of
                                            blocks glued face to face (NAME_blocks), every
-                                           face of the blocks four-sided
+                                           face of the blocks four-sided; and
+                                           plate_blind_hole (data/plate_blind_hole.step)
 
 plate_slot.step: a 4 x 2 x 0.5 plate with a slot 0.6 wide cut from one long side, 1.2 deep,
 with a round end; the slot is open on the side, so the solid has genus 0.
@@ -44,7 +45,8 @@ import gmsh
 
 
 SHAPES = ["cube", "lblock", "lblock_blocks", "cylinder", "cylinder_blocks", "sphere",
-          "sphere_blocks", "plate_hole", "plate_hole_blocks", "torus", "torus_blocks"]
+          "sphere_blocks", "plate_hole", "plate_hole_blocks", "torus", "torus_blocks",
+          "plate_blind_hole"]
 
 
 def plate_slot(occ):
@@ -228,6 +230,8 @@ def shapes(occ, name):
         occ.addTorus(0, 0, 0, 1, 0.4)
     elif name == "torus_blocks":
         torus_blocks(occ)
+    elif name == "plate_blind_hole":
+        plate_blind_hole(occ)
 
 
 def write(path, build, *args):
