@@ -110,12 +110,14 @@ std::vector<std::array<weave::DualLink, 6>> rebuild_dual(const stc::HexComplex& 
 }  // namespace
 
 weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
-                                       const weave::WeaveOptions& weave_options,
+                                       const weave::WeaveOptions& caller_weave_options,
                                        const std::vector<std::array<double, 4>>& side_angles,
                                        const SelfCrossingOptions& options,
                                        SelfCrossingReport& report) {
   report = SelfCrossingReport{};
   report.used = true;
+  // The ways below read these; the reliable fallback changes the rules and runs them again.
+  weave::WeaveOptions weave_options = caller_weave_options;
   auto t = std::chrono::steady_clock::now();
   report.moves = stc::untangle_loops(surface.surface, options.search);
   const stc::LoopMoveResult moves = report.moves;  // a copy: a fill replaces report.moves
@@ -368,6 +370,23 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
     if (!best || r->complex.hexes.size() < best->first.complex.hexes.size())
       best.emplace(std::move(*r), report);
     if (!best_of) break;
+  }
+  if (!best && options.reliable_fallback && moves.simple && !caller_weave_options.selection &&
+      weave_options.rules == weave::RuleSet::Extended) {
+    weave_options.rules = weave::RuleSet::Reliable;
+    weave_options.selection = nullptr;
+    report.weave_failure += "; then with the reliable rules: ";
+    for (const auto& way : ways) {
+      SelfCrossingReport fresh = base;
+      keep_totals(fresh);
+      report = std::move(fresh);
+      std::optional<weave::WeaveResult> r = way();
+      if (!r) continue;
+      report.reliable_fallback = true;
+      if (!best || r->complex.hexes.size() < best->first.complex.hexes.size())
+        best.emplace(std::move(*r), report);
+      if (!best_of) break;
+    }
   }
   if (best) {
     keep_totals(best->second);

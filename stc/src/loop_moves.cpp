@@ -485,6 +485,138 @@ std::vector<Slot> hot_faces(const State& s, Goal goal) {
   return order;
 }
 
+/// The pattern of `move` in `patterns()`.
+const Pattern& pattern_of(FrontMove move) {
+  for (const Pattern& p : patterns())
+    if (p.move == move) return p;
+  throw InternalError("loop moves: no pattern for " + to_string(move));
+}
+
+/// The candidate of `pattern` whose front faces are exactly the slots `want`; false if none
+/// passes the preconditions.
+bool candidate_on(const State& s, const Pattern& pattern, std::vector<Slot> want, Candidate& c) {
+  std::sort(want.begin(), want.end());
+  for (std::size_t seed = 0; seed < pattern.chosen.size(); ++seed) {
+    for (int rot = 0; rot < 4; ++rot) {
+      if (!try_candidate(s, pattern, seed, want.front(), rot, 3, c)) continue;
+      std::vector<Slot> got;
+      for (const int t : pattern.chosen) got.push_back(c.slot_of[static_cast<std::size_t>(t)]);
+      std::sort(got.begin(), got.end());
+      if (got == want) return true;
+    }
+  }
+  return false;
+}
+
+/// A straight strip of the front: faces F0 .. F(m+1) that one loop P passes through in turn,
+/// with `enter[i]` the side of F(i) facing F(i-1) (`enter[0]` unused).
+struct Strip {
+  std::vector<Slot> faces;
+  std::vector<int> enter;
+};
+
+/// The strips a tunnel may run along: from a face crossed by a self-intersecting loop (not
+/// where it crosses itself), along the other loop P through that face, to a face that a
+/// self-intersecting loop crosses again, passing at most `hits` such faces on the way and at
+/// most `length` faces between the ends. Each strip once (its first slot below its last), in
+/// slot order.
+std::vector<Strip> tunnel_strips(const State& s, std::size_t length, std::size_t hits) {
+  std::vector<Strip> out;
+  for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    if (s.alive[f] == 0U) continue;
+    for (int dl = 0; dl < 2; ++dl) {
+      const std::int32_t l = s.face_loop[2 * f + static_cast<std::size_t>(dl)];
+      const std::int32_t loop_p = s.face_loop[2 * f + static_cast<std::size_t>(1 - dl)];
+      if (s.loop_self[static_cast<std::size_t>(l)] == 0U || l == loop_p) continue;
+      for (const int exit0 : {1 - dl, 3 - dl}) {
+        Strip st;
+        st.faces.push_back(static_cast<Slot>(f));
+        st.enter.push_back(-1);
+        std::size_t seen_hits = 0;
+        auto g = static_cast<std::size_t>(f);
+        int exit = exit0;
+        while (st.faces.size() <= length + 1) {
+          const Slot across = s.nbr[4 * g + static_cast<std::size_t>(exit)];
+          g = static_cast<std::size_t>(across / 4);
+          const int k = across % 4;
+          if (std::find(st.faces.begin(), st.faces.end(), static_cast<Slot>(g)) != st.faces.end())
+            break;  // P closed up (or crossed itself) before another hit
+          st.faces.push_back(static_cast<Slot>(g));
+          st.enter.push_back(k);
+          const std::int32_t t = s.face_loop[2 * g + static_cast<std::size_t>(1 - k % 2)];
+          if (s.loop_self[static_cast<std::size_t>(t)] != 0U) {
+            if (st.faces.size() >= 3 && st.faces.front() < st.faces.back()) out.push_back(st);
+            if (++seen_hits > hits) break;
+          }
+          exit = (k + 2) % 4;
+        }
+      }
+    }
+  }
+  return out;
+}
+
+/// The faces a tunnel's hex must also take at an end of the row: around each node of the
+/// edge between `strip.faces[i - 1]` and `strip.faces[i]` that has valence 3, the third face
+/// (a node of valence 3 on that edge would be left with valence 2 otherwise; taking its third
+/// face too takes it off the front).
+void end_faces(const State& s, const Strip& strip, std::size_t i, std::vector<Slot>& want) {
+  const Slot f = strip.faces[i];
+  const auto side = static_cast<std::size_t>(strip.enter[i]);
+  const Quad& q = s.faces[static_cast<std::size_t>(f)];
+  for (const NodeId v : {q[side], q[(side + 1) % 4]}) {
+    std::vector<Slot> fan;
+    if (walk_fan(s, v, [&](Slot g, int) { fan.push_back(g); }) != 3) continue;
+    for (const Slot g : fan)
+      if (g != f && g != strip.faces[i - 1] && std::find(want.begin(), want.end(), g) == want.end())
+        want.push_back(g);
+  }
+}
+
+/// Attaches a row of m = faces - 2 hexes on the strip: hex i on F(i), with F(0) and F(m+1) as
+/// the row's end faces. Built one hex at a time: a blind chord on the previous hex's far face
+/// (F(0) for the first) and F(i), then a surgery on the last far face, F(m) and F(m+1). At an
+/// end of the row a node of valence 3 on the end edge makes the hex take that node's third
+/// face too (a cross, bigon, tube or cap instead of the blind chord or surgery). Each step
+/// passes `try_candidate`'s preconditions or the whole tunnel is refused (false; `s` is then
+/// partly changed and must be dropped). With `trace`, the front is evaluated after every hex
+/// so that each applied move records its self-crossing quads.
+bool apply_tunnel(State& s, const Strip& strip, bool trace) {
+  const std::size_t m = strip.faces.size() - 2;
+  Slot prev = strip.faces[0];
+  for (std::size_t i = 1; i <= m; ++i) {
+    const bool last = i == m;
+    std::vector<Slot> want{prev, strip.faces[i]};
+    if (last) want.push_back(strip.faces[i + 1]);
+    if (i == 1) end_faces(s, strip, 1, want);
+    if (last) end_faces(s, strip, m + 1, want);
+    Candidate c;
+    bool found = false;
+    for (const Pattern& p : patterns()) {
+      if (p.chosen.size() != want.size()) continue;
+      if (want.size() == 2 && p.move != FrontMove::BlindChord) continue;
+      if (want.size() == 3 && p.move == FrontMove::Cross && !(last || i == 1)) continue;
+      if (candidate_on(s, p, want, c)) {
+        found = true;
+        break;
+      }
+    }
+    if (!found) return false;
+    const auto hex_id = static_cast<std::int32_t>(s.hexes.size());
+    apply(s, c);
+    if (trace) {
+      evaluate(s);
+      s.moves.back().self_crossing_quads = self_crossings(s);
+    }
+    if (last) break;
+    // The new face of hex i on the edge F(i) shared with F(i+1): the next hex's other face.
+    const auto next = static_cast<std::size_t>(strip.faces[i + 1]);
+    prev = s.nbr[4 * next + static_cast<std::size_t>(strip.enter[i + 1])] / 4;
+    if (s.owner[static_cast<std::size_t>(prev)] != hex_id) return false;
+  }
+  return true;
+}
+
 class Search {
  public:
   Search(const LoopMoveOptions& options, std::size_t input_quads, Goal goal)
@@ -540,6 +672,64 @@ class Search {
       }
     }
     return best;
+  }
+
+  /// The tunnels from `s` (see `LoopMoveOptions::tunnel_length`): every strip of
+  /// `tunnel_strips` tried on a copy of `s`, the `keep` best kept by `surgery_rank`
+  /// (self-crossing quads first), each ranked front without its trace (`trace` false).
+  std::vector<std::pair<State, Strip>> tunnels(const State& s, std::size_t keep) {
+    std::vector<std::pair<State, Strip>> best;
+    for (const Strip& st : tunnel_strips(s, options_.tunnel_length, options_.tunnel_hits)) {
+      if (exhausted()) break;
+      const std::size_t m = st.faces.size() - 2;
+      if (s.live + 2 * m - 2 > max_faces_ || s.moves.size() + m > options_.max_moves) continue;
+      State next = s;
+      if (!apply_tunnel(next, st, false)) continue;
+      evaluate(next, goal_);
+      ++evaluations_;
+      work_ += next.faces.size() * m;
+      next.rank = surgery_rank(next.score);
+      const auto pos = std::upper_bound(
+          best.begin(), best.end(), next.rank,
+          [](const Score& v, const std::pair<State, Strip>& b) { return v < b.first.rank; });
+      if (static_cast<std::size_t>(pos - best.begin()) >= keep) continue;
+      best.insert(pos, {std::move(next), st});
+      if (best.size() > keep) best.pop_back();
+    }
+    return best;
+  }
+
+  /// The tunnel stage: one tunnel, or two in a row (the first taking one crossing of a loop
+  /// apart and leaving it odd, the second the other crossing), whose result has (odd loops,
+  /// self-crossing quads) below `s`'s; the lowest score wins. True and `out` set when found:
+  /// `s` with the tunnels replayed, every hex's self-crossings traced.
+  bool tunnel(const State& s, State& out) {
+    const auto key = [](const State& x) {
+      return std::make_pair(std::get<0>(x.score), std::get<1>(x.score));
+    };
+    std::vector<Strip> chosen;
+    Score best_score{};
+    const auto consider = [&](const State& t, const std::vector<Strip>& path) {
+      if (key(t) >= key(s) || (!chosen.empty() && t.score >= best_score)) return;
+      chosen = path;
+      best_score = t.score;
+    };
+    auto first = tunnels(s, std::max<std::size_t>(1, options_.tunnel_width));
+    for (const auto& [t, st] : first) consider(t, {st});
+    if (chosen.empty()) {
+      for (const auto& [t, st] : first) {
+        // Only a front with fewer self-crossing quads is worth a second tunnel.
+        if (std::get<1>(t.score) > std::get<1>(s.score)) break;
+        for (const auto& [u, st2] : tunnels(t, 1)) consider(u, {st, st2});
+      }
+    }
+    if (chosen.empty()) return false;
+    out = s;
+    for (const Strip& st : chosen)
+      if (!apply_tunnel(out, st, true))
+        throw InternalError("loop moves: a tunnel that applied once does not apply again");
+    evaluate(out, goal_);
+    return true;
   }
 
   [[nodiscard]] std::size_t evaluations() const { return evaluations_; }
@@ -716,6 +906,16 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
         surgeries = std::move(next);
       }
     }
+    if (!improved && goal == Goal::SimpleLoops && options.tunnel_length > 0) {
+      // The tunnel: a row of hexes reconnecting two strands of self-intersecting loops that
+      // are too far apart for any sequence of local moves (two opposite curls of one loop).
+      State best;
+      if (search.tunnel(current, best)) {
+        current = std::move(best);
+        improved = true;
+        ++r.tunnels;
+      }
+    }
     if (!improved && search.exhausted()) {
       stop = "evaluation bound (" + std::to_string(options.max_evaluations) + " moves or " +
              std::to_string(options.max_work) + " face evaluations) reached";
@@ -746,6 +946,7 @@ LoopMoveResult untangle_loops(const QuadSurface& surface, const LoopMoveOptions&
   r.evaluations = stats.evaluations;
   r.beam_searches = stats.beam_searches;
   r.surgery_searches = stats.surgery_searches;
+  r.tunnels = stats.tunnels;
   r.stop_reason = stats.stop_reason;
   return r;
 }
@@ -764,6 +965,7 @@ LoopMoveResult fill_front(const LoopMoveResult& start, const LoopMoveOptions& op
   r.evaluations = start.evaluations + stats.evaluations;
   r.beam_searches = start.beam_searches + stats.beam_searches;
   r.surgery_searches = start.surgery_searches + stats.surgery_searches;
+  r.tunnels = start.tunnels + stats.tunnels;
   r.stop_reason = stats.stop_reason;
   r.simple = current.live == 0;
   return r;

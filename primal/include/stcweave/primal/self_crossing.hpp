@@ -50,6 +50,11 @@ struct SelfCrossingOptions {
   /// (`weave::AttachedWeaveOptions`). 0 (off): measured, 8 rounds changed no outcome of the
   /// generated spheres.
   std::size_t untangle_rounds = 0;
+  /// When every way above blocks with the `extended` rules, run them all again with the
+  /// `reliable` rules (the extended filters read angles that the attached hexes' faces only
+  /// get by propagation). Measured: pmp/fandisk_quads, whose untangled front blocks every
+  /// extended weave, is woven this way (docs/self-intersecting-loops.md).
+  bool reliable_fallback = true;
 };
 
 /// What `weave_self_crossing` did.
@@ -72,6 +77,9 @@ struct SelfCrossingReport {
   std::string free_weave_violation;
   /// The front was filled by moves alone (`stc::fill_front`), without the weave.
   bool filled = false;
+  /// The front was woven with the `reliable` rules after the `extended` ones blocked
+  /// (`SelfCrossingOptions::reliable_fallback`).
+  bool reliable_fallback = false;
   /// Why the weave of the front failed, when it did and the moves filled the front instead.
   std::string weave_failure;
   /// The first violated invariant of the direct join, when it was invalid.

@@ -70,6 +70,18 @@ struct LoopMoveOptions {
   std::size_t surgery_depth = 3;
   std::size_t surgery_width = 16;
   std::size_t surgery_candidates = 4000;
+  /// The tunnel, tried when the surgery look-ahead finds nothing too: a row of hexes along a
+  /// straight strip of the front (the faces a loop P passes through in turn) from a face
+  /// crossed by a self-intersecting loop L to a face further along P that L crosses again;
+  /// it reconnects the two strands of L there however far apart they are (a long U-surgery:
+  /// blind chords, then a surgery). `tunnel_length`: the most hexes in the row; 0: off.
+  /// `tunnel_hits`: how many crossings of P with L the strip may run past before it ends on
+  /// one (0: only the next crossing along P).
+  std::size_t tunnel_length = 64;
+  std::size_t tunnel_hits = 2;
+  /// When no single tunnel lowers (odd loops, self-crossing quads): the tunnels kept (by
+  /// self-crossing quads first) to try a second tunnel after each.
+  std::size_t tunnel_width = 8;
 };
 
 /// One move of the search, as applied.
@@ -101,6 +113,7 @@ struct LoopMoveResult {
   std::size_t evaluations = 0;  ///< candidate moves evaluated
   std::size_t beam_searches = 0;
   std::size_t surgery_searches = 0;  ///< surgery look-aheads run (the beam found nothing)
+  std::size_t tunnels = 0;           ///< tunnels applied (rows of hexes, each one step)
   /// True when no loop of `front` crosses itself.
   bool simple = false;
   /// Why the search stopped ("simple", or which bound).
