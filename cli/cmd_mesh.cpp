@@ -70,6 +70,7 @@ nlohmann::json self_crossing_json(const primal::SelfCrossingReport& s) {
           {"moves", moves},
           {"evaluations", s.moves.evaluations},
           {"beam_searches", s.moves.beam_searches},
+          {"tunnels", s.moves.tunnels},
           {"front_quads", s.moves.front.quads.size()},
           {"pillowed", s.pillowed},
           {"pillow_hexes", s.pillow_hexes},
@@ -78,6 +79,7 @@ nlohmann::json self_crossing_json(const primal::SelfCrossingReport& s) {
           {"free_nodes", s.free_nodes},
           {"front_pillows", s.front_pillows},
           {"filled", s.filled},
+          {"reliable_fallback", s.reliable_fallback},
           {"seconds",
            {{"search", s.search_seconds}, {"weave", s.weave_seconds}, {"join", s.join_seconds}}}};
 }

@@ -485,13 +485,6 @@ std::vector<Slot> hot_faces(const State& s, Goal goal) {
   return order;
 }
 
-/// The pattern of `move` in `patterns()`.
-const Pattern& pattern_of(FrontMove move) {
-  for (const Pattern& p : patterns())
-    if (p.move == move) return p;
-  throw InternalError("loop moves: no pattern for " + to_string(move));
-}
-
 /// The candidate of `pattern` whose front faces are exactly the slots `want`; false if none
 /// passes the preconditions.
 bool candidate_on(const State& s, const Pattern& pattern, std::vector<Slot> want, Candidate& c) {
