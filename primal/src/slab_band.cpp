@@ -212,6 +212,7 @@ std::vector<SlabBand> far_bands(const stc::QuadSurface& surface, const std::vect
       }
       up_w.pop_back();  // the common ancestor is the end of up_u
       std::vector<NodeId> cyc;
+      cyc.reserve(up_u.size() + up_w.size());
       for (std::size_t x : up_u) cyc.push_back(NodeId(x));
       for (auto it = up_w.rbegin(); it != up_w.rend(); ++it) cyc.push_back(NodeId(*it));
       if (cyc.size() < 4) continue;
@@ -233,6 +234,7 @@ std::vector<SlabBand> far_bands(const stc::QuadSurface& surface, const std::vect
     return p.band.outer.size() < q.band.outer.size();
   });
   std::vector<SlabBand> out;
+  out.reserve(std::min(max_bands, found.size()));
   for (Found& f : found) {
     if (out.size() == max_bands) break;
     out.push_back(std::move(f.band));
