@@ -38,7 +38,7 @@ void expect_slab_cuts(const Slabbed& s, const SurfaceMesh& surface, std::size_t 
   EXPECT_EQ(s.woven.hex_shrink.size(), s.woven.complex.hexes.size());
 }
 
-TEST(Slab, SquareRingIsCutAlongTheBandBesideItsSection) {
+TEST(Slab, SquareRingIsCutAlongSlabsIntoACertifiedComplex) {
   const SurfaceMesh ring = test::voxel_surface(test::ring_cells());
   const Slabbed s = slabbed(ring);
   expect_slab_cuts(s, ring, 1);
