@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "chord_disc.hpp"
+#include "slab_band.hpp"
 #include "stcweave/primal/edge_angles.hpp"
 #include "stcweave/primal/handles.hpp"
 #include "stcweave/stc/errors.hpp"
@@ -572,13 +573,11 @@ constexpr std::size_t kSlabChoices = 8;
 /// Weaves of slab balls per solid by the slab route.
 constexpr std::size_t kSlabWeaves = 60;
 
-/// A band of quads beside a handle cycle: the quads on the cycle's minus side that touch it,
-/// between the cycle and a second cycle of the same class (`outer`, walked the way the band's
-/// quads traverse it).
-struct Band {
-  std::vector<std::size_t> quads;  ///< of the surface
-  std::vector<NodeId> outer;
-};
+/// A band of quads between a handle cycle and a second cycle of its class (slab_band.hpp).
+using Band = SlabBand;
+/// Far bands (`far_bands`) tried per handle by the slab route before the band beside the
+/// cycle.
+constexpr std::size_t kFarBands = 3;
 
 /// The band of `cycle` on `surface`: none when the quads touching the cycle on its minus side
 /// do not make an annulus whose other boundary is one simple cycle off the cycle.
@@ -812,72 +811,81 @@ std::optional<SlabRoute> slab_route(const CutSurface& solid,
       [&](const CutSurface& current, std::size_t k, std::size_t final_start) -> bool {
     if (out_of_budget()) return false;
     auto t1 = std::chrono::steady_clock::now();
-    const std::optional<Band> band = band_of(current.mesh.surface, cycles[k]);
-    if (!band) {
+    // The bands to a far partner cycle first (both pieces thick), then the band beside it.
+    std::vector<Band> bands = far_bands(current.mesh.surface, cycles[k], kFarBands);
+    if (std::optional<Band> beside = band_of(current.mesh.surface, cycles[k]))
+      bands.push_back(std::move(*beside));
+    if (bands.empty()) {
       rep.cut_seconds += seconds_since(t1);
       ++no_band;
       return false;
     }
     const std::vector<DiscChoice> inner = rail_choices(current, cycles[k]);
-    const std::vector<DiscChoice> outer = rail_choices(current, band->outer);
     rep.cut_seconds += seconds_since(t1);
     HandleCut& hc = cuts[k];
     hc.cycle.clear();
     for (NodeId v : cycles[k]) hc.cycle.push_back(current.final_id[v.index()]);
     const int genus_after = static_cast<int>(cycles.size() - k - 1);
-    for (const DiscChoice& ci : inner) {
-      for (const DiscChoice& co : outer) {
-        if (out_of_budget()) return false;
-        ++hc.attempts;
-        t1 = std::chrono::steady_clock::now();
-        std::size_t trial_final = final_start;
-        std::optional<SlabCut> cut = cut_slab(current, cycles[k], *band, ci, co, &trial_final);
-        if (!cut) {
+    for (const Band& band_k : bands) {
+      const Band* band = &band_k;
+      t1 = std::chrono::steady_clock::now();
+      const std::vector<DiscChoice> outer = rail_choices(current, band->outer);
+      rep.cut_seconds += seconds_since(t1);
+      for (const DiscChoice& ci : inner) {
+        for (const DiscChoice& co : outer) {
+          if (out_of_budget()) return false;
+          ++hc.attempts;
+          t1 = std::chrono::steady_clock::now();
+          std::size_t trial_final = final_start;
+          std::optional<SlabCut> cut = cut_slab(current, cycles[k], *band, ci, co, &trial_final);
+          if (!cut) {
+            rep.cut_seconds += seconds_since(t1);
+            continue;
+          }
+          ++loop_checks;
+          const bool clean = clean_of_genus(cut->slab, 0) && clean_of_genus(cut->rest, genus_after);
           rep.cut_seconds += seconds_since(t1);
-          continue;
-        }
-        ++loop_checks;
-        const bool clean = clean_of_genus(cut->slab, 0) && clean_of_genus(cut->rest, genus_after);
-        rep.cut_seconds += seconds_since(t1);
-        if (!clean) continue;
-        // The other handles' cycles must stay on the rest.
-        bool kept_cycles = true;
-        std::vector<std::vector<NodeId>> saved = cycles;
-        for (std::size_t j = k + 1; j < cycles.size() && kept_cycles; ++j) {
-          for (NodeId& v : cycles[j]) {
-            v = cut->rest_renumber[v.index()];
-            if (!v.is_valid()) kept_cycles = false;
+          if (!clean) continue;
+          // The other handles' cycles must stay on the rest.
+          bool kept_cycles = true;
+          std::vector<std::vector<NodeId>> saved = cycles;
+          for (std::size_t j = k + 1; j < cycles.size() && kept_cycles; ++j) {
+            for (NodeId& v : cycles[j]) {
+              v = cut->rest_renumber[v.index()];
+              if (!v.is_valid()) kept_cycles = false;
+            }
           }
-        }
-        if (!kept_cycles) {
-          cycles = saved;
-          continue;
-        }
-        std::optional<BallWeave> slab = weave_first(cut->slab, trial_final);
-        if (!slab) {
-          cycles = saved;
-          continue;
-        }
-        const std::size_t after_slab = trial_final + slab->interior;
-        hc.grid_a = ci.a;
-        hc.grid_b = ci.b;
-        hc.disc = "slab: " + disc_name(ci) + " and " + disc_name(co) + ", " +
-                  std::to_string(slab->hexes.size()) + " hexes";
-        slabs.push_back(std::move(*slab));
-        if (k + 1 < cycles.size()) {
-          if (cut_from(cut->rest, k + 1, after_slab)) return true;
-        } else if (std::optional<BallWeave> w = weave_first(cut->rest, after_slab)) {
-          std::vector<stc::Hex> all = w->hexes;
-          for (const BallWeave& b : slabs) all.insert(all.end(), b.hexes.begin(), b.hexes.end());
-          const std::string problem = glue_problem(all, after_slab + w->interior, rep);
-          if (problem.empty()) {
-            found = SlabRoute{std::move(*w), slabs, after_slab, cuts};
-            return true;
+          if (!kept_cycles) {
+            cycles = saved;
+            continue;
           }
-          note("slabs glued invalid (" + problem.substr(0, 100) + ")");
+          std::optional<BallWeave> slab = weave_first(cut->slab, trial_final);
+          if (!slab) {
+            cycles = saved;
+            continue;
+          }
+          const std::size_t after_slab = trial_final + slab->interior;
+          hc.grid_a = ci.a;
+          hc.grid_b = ci.b;
+          hc.disc = "slab: " + disc_name(ci) + " and " + disc_name(co) + ", " +
+                    std::to_string(slab->hexes.size()) + " hexes, band of " +
+                    std::to_string(band->quads.size()) + " quads";
+          slabs.push_back(std::move(*slab));
+          if (k + 1 < cycles.size()) {
+            if (cut_from(cut->rest, k + 1, after_slab)) return true;
+          } else if (std::optional<BallWeave> w = weave_first(cut->rest, after_slab)) {
+            std::vector<stc::Hex> all = w->hexes;
+            for (const BallWeave& b : slabs) all.insert(all.end(), b.hexes.begin(), b.hexes.end());
+            const std::string problem = glue_problem(all, after_slab + w->interior, rep);
+            if (problem.empty()) {
+              found = SlabRoute{std::move(*w), slabs, after_slab, cuts};
+              return true;
+            }
+            note("slabs glued invalid (" + problem.substr(0, 100) + ")");
+          }
+          slabs.pop_back();
+          cycles = saved;
         }
-        slabs.pop_back();
-        cycles = saved;
       }
     }
     return false;

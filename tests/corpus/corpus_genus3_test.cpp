@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <string>
 
 #include "stcweave/primal/cut.hpp"
 #include "stcweave/primal/io.hpp"
@@ -31,6 +32,25 @@ TEST(CorpusGenus3, PartA6IsMeshedByTheSlabRouteIntoACertifiedComplex) {
   EXPECT_EQ(report.cuts[0].disc.rfind("slab: ", 0), 0u) << report.cuts[0].disc;
   EXPECT_EQ(woven.hex_rule.size(), woven.complex.hexes.size());
   EXPECT_EQ(woven.hex_shrink.size(), woven.complex.hexes.size());
+}
+
+// With default options the disc search fails and the slab route cuts the handle between its
+// cycle and a far cycle of the same class (slab_band.cpp): both pieces thick. Before, the band
+// beside the cycle (14 quads) made a thin slab: 776 hexes, 125 inverted after untangling.
+TEST(CorpusGenus3, PartA6SlabsAlongAFarBandGiveFewerHexesAndFewerInverted) {
+  STCWEAVE_SKIP_WITHOUT_SHARED_DATA();
+  const auto path = test::shared_data() / "gmsh/part_a6_trisubdiv_coarse.obj";
+  primal::MeshResult r;
+  ASSERT_NO_THROW(r = primal::mesh_file(primal::read_mesh(path)));
+  EXPECT_TRUE(r.validation.valid) << r.validation.summary();
+  ASSERT_EQ(r.solids.cuts.size(), 1u);
+  const std::string& disc = r.solids.cuts[0].disc;
+  EXPECT_EQ(disc.rfind("slab: ", 0), 0u) << disc;
+  const auto band = disc.find("band of ");
+  ASSERT_NE(band, std::string::npos) << disc;
+  EXPECT_GT(std::stoul(disc.substr(band + 8)), 14u) << disc;  // not the band beside the cycle
+  EXPECT_LT(r.mesh.complex.hexes.size(), 400u);
+  EXPECT_LT(r.quality.inverted, 60u);  // measured 29 (was 125): not yet 0
 }
 
 }  // namespace

@@ -3,8 +3,11 @@
 // own, and the rest of the solid closed by the same discs; glued by node ids alone.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <optional>
 #include <vector>
 
+#include "../../primal/src/slab_band.hpp"
 #include "stcweave/primal/cut.hpp"
 #include "stcweave/primal/handles.hpp"
 #include "stcweave/stc/validate.hpp"
@@ -35,7 +38,7 @@ void expect_slab_cuts(const Slabbed& s, const SurfaceMesh& surface, std::size_t 
   EXPECT_EQ(s.woven.hex_shrink.size(), s.woven.complex.hexes.size());
 }
 
-TEST(Slab, SquareRingIsCutAlongTheBandBesideItsSection) {
+TEST(Slab, SquareRingIsCutAlongSlabsIntoACertifiedComplex) {
   const SurfaceMesh ring = test::voxel_surface(test::ring_cells());
   const Slabbed s = slabbed(ring);
   expect_slab_cuts(s, ring, 1);
@@ -47,6 +50,27 @@ TEST(Slab, TorusOfSquareSectionGivesAValidComplexTheSameTwice) {
   expect_slab_cuts(a, torus, 1);
   const Slabbed b = slabbed(torus);
   EXPECT_EQ(a.woven.complex.hexes, b.woven.complex.hexes);  // deterministic
+}
+
+// far_bands on a torus of 4 x 12 quads: the partner of the first band is a section of the
+// torus, the band's quads on the minus side of the cycle, and the split is as even as the
+// sections allow (24 of 48 quads), where the band beside the cycle has 8.
+TEST(Slab, FarBandOfATorusSplitsItIntoTwoHalves) {
+  const SurfaceMesh torus = test::torus_surface(4, 12, 3.0, 1.0);
+  const HandleDiagnosis h = diagnose_handles(torus);
+  ASSERT_EQ(h.handles.size(), 1u);
+  const std::vector<NodeId>& cycle = h.handles[0].nodes;
+  const std::vector<SlabBand> bands = far_bands(torus.surface, cycle, 3);
+  ASSERT_FALSE(bands.empty());
+  EXPECT_EQ(bands[0].quads.size(), 24u);
+  EXPECT_EQ(bands[0].outer.size(), cycle.size());
+  for (NodeId v : bands[0].outer)
+    EXPECT_EQ(std::count(cycle.begin(), cycle.end(), v), 0) << v.str();
+  // The same partner, given directly, gives the same band; the cycle itself is no partner.
+  const std::optional<SlabBand> again = band_between(torus.surface, cycle, bands[0].outer);
+  ASSERT_TRUE(again.has_value());
+  EXPECT_EQ(again->quads, bands[0].quads);
+  EXPECT_FALSE(band_between(torus.surface, cycle, cycle).has_value());
 }
 
 }  // namespace
