@@ -1129,17 +1129,22 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
                             ": a handle cycle has odd length: no hex "
                             "mesh with this boundary exists");
       }
-      std::vector<char> used(solid.final_id.size(), 0);
-      for (const HandleCycle& hc : h.handles) {
-        for (NodeId v : hc.nodes) {
-          if (used[v.index()] != 0) {
-            throw Unsupported(ComponentId(c).str() + ": its handle cycles share node " +
-                              solid.final_id[v.index()].str() +
-                              ": cutting handles whose cycles touch is not supported yet");
+      // Cycles that touch: one of them replaced by another of its class (handles.hpp).
+      cycles = disjoint_handle_cycles(h, solid.final_id.size());
+      if (cycles.empty()) {
+        std::vector<char> used(solid.final_id.size(), 0);
+        for (const HandleCycle& hc : h.handles) {
+          for (NodeId v : hc.nodes) {
+            if (used[v.index()] != 0) {
+              throw Unsupported(ComponentId(c).str() + ": its handle cycles share node " +
+                                solid.final_id[v.index()].str() +
+                                " and no choice among the other cycles of their classes is "
+                                "disjoint: cutting handles whose cycles touch is not supported");
+            }
+            used[v.index()] = 1;
           }
-          used[v.index()] = 1;
         }
-        cycles.push_back(hc.nodes);
+        throw InternalError(ComponentId(c).str() + ": no disjoint handle cycles were chosen");
       }
       // Fallbacks: one handle's cycle replaced by another of its class, when disjoint from
       // the other handles' cycles.

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <map>
 #include <tuple>
 
@@ -691,6 +692,47 @@ HandleDiagnosis diagnose_handles(const SurfaceMesh& mesh, const HandleOptions& o
     if (parity % 2 == 1) out.odd_combined = true;
   }
   out.decided = true;
+  return out;
+}
+
+std::vector<std::vector<NodeId>> disjoint_handle_cycles(const HandleDiagnosis& diagnosis,
+                                                        std::size_t num_nodes,
+                                                        std::size_t max_tries) {
+  const std::size_t g = diagnosis.handles.size();
+  if (g == 0) return {};
+  // Per handle, its candidates: its own cycle, then its alternatives.
+  std::vector<std::vector<const std::vector<NodeId>*>> options(g);
+  for (std::size_t k = 0; k < g; ++k) {
+    options[k].push_back(&diagnosis.handles[k].nodes);
+    if (k < diagnosis.alternatives.size())
+      for (const HandleCycle& alt : diagnosis.alternatives[k]) options[k].push_back(&alt.nodes);
+  }
+  std::vector<int> owner(num_nodes, -1);  // the handle whose chosen cycle holds the node
+  std::vector<std::size_t> pick(g, 0);
+  std::size_t tries = 0;
+  const auto fits = [&](const std::vector<NodeId>& c) {
+    return std::all_of(c.begin(), c.end(),
+                       [&](NodeId v) { return v.index() < num_nodes && owner[v.index()] < 0; });
+  };
+  const auto mark = [&](const std::vector<NodeId>& c, int who) {
+    for (NodeId v : c) owner[v.index()] = who;
+  };
+  const std::function<bool(std::size_t)> choose = [&](std::size_t k) -> bool {
+    if (k == g) return true;
+    for (std::size_t i = 0; i < options[k].size(); ++i) {
+      if (++tries > max_tries) return false;
+      if (!fits(*options[k][i])) continue;
+      mark(*options[k][i], static_cast<int>(k));
+      pick[k] = i;
+      if (choose(k + 1)) return true;
+      mark(*options[k][i], -1);
+    }
+    return false;
+  };
+  if (!choose(0)) return {};
+  std::vector<std::vector<NodeId>> out;
+  out.reserve(g);
+  for (std::size_t k = 0; k < g; ++k) out.push_back(*options[k][pick[k]]);
   return out;
 }
 

@@ -137,5 +137,43 @@ TEST(Handles, FoldedFanAtTheTreeRootIsUndecided) {
   EXPECT_FALSE(h.all_even());
 }
 
+HandleCycle cycle_of(std::initializer_list<int> ids) {
+  HandleCycle c;
+  for (const int v : ids) c.nodes.emplace_back(v);
+  return c;
+}
+
+// Handle cycles that touch (two handles meeting at a junction, as skel2016_fertility's): the
+// later one is replaced by the first of its alternatives that touches none chosen before;
+// disjoint cycles are kept as they are; no disjoint choice gives an empty set.
+TEST(DisjointHandleCycles, TouchingCyclesTakeAnAlternativeOfTheirClass) {
+  HandleDiagnosis d;
+  d.decided = true;
+  d.handles = {cycle_of({0, 1, 2, 3}), cycle_of({3, 4, 5, 6})};
+  d.alternatives = {{cycle_of({20, 21, 22, 23})},
+                    {cycle_of({2, 7, 8, 9}), cycle_of({10, 11, 12, 13})}};
+  const std::vector<std::vector<NodeId>> chosen = disjoint_handle_cycles(d, 30);
+  ASSERT_EQ(chosen.size(), 2u);
+  EXPECT_EQ(chosen[0], d.handles[0].nodes);
+  EXPECT_EQ(chosen[1], d.alternatives[1][1].nodes);
+
+  d.handles[1] = cycle_of({14, 15, 16, 17});
+  const std::vector<std::vector<NodeId>> kept = disjoint_handle_cycles(d, 30);
+  ASSERT_EQ(kept.size(), 2u);
+  EXPECT_EQ(kept[0], d.handles[0].nodes);
+  EXPECT_EQ(kept[1], d.handles[1].nodes);
+
+  // The first handle's alternative frees the second one's own cycle (backtracking).
+  d.handles[1] = cycle_of({3, 4, 5, 6});
+  d.alternatives[1] = {cycle_of({1, 7, 8, 9})};
+  const std::vector<std::vector<NodeId>> back = disjoint_handle_cycles(d, 30);
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_EQ(back[0], d.alternatives[0][0].nodes);
+  EXPECT_EQ(back[1], d.handles[1].nodes);
+
+  d.alternatives[0].clear();
+  EXPECT_TRUE(disjoint_handle_cycles(d, 30).empty());
+}
+
 }  // namespace
 }  // namespace stcweave::primal

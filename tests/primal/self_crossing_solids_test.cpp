@@ -121,6 +121,33 @@ TEST(SelfCrossingSolids, SeveralShellsOneSelfCrossingAreBothMeshed) {
   EXPECT_TRUE(v.valid) << v.summary();
 }
 
+// The front-move searches of the disc choices share one budget: once a search uses it up, no
+// later ball is searched, and the disc search ends with a WeaveError (exit code 3) that says
+// so, instead of rerunning a whole search per disc choice.
+TEST(SelfCrossingSolids, SharedSearchBudgetEndsTheDiscSearchWithAWeaveError) {
+  const std::vector<SurfaceMesh> rotated =
+      self_crossing_rotations(test::voxel_surface(test::ring_cells()));
+  ASSERT_FALSE(rotated.empty());
+  SurfaceMesh ring = rotated.front();
+  (void)orient_outward(ring);
+  SharedSearchBudget budget;
+  budget.work = 1;  // the first search stops at once
+  SolidsReport solids;
+  SelfCrossingReport report;
+  try {
+    (void)weave_solids_self_crossing(ring, {}, {}, {}, &solids, report, budget);
+    FAIL() << "expected WeaveError";
+  } catch (const WeaveError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("used up their shared budget"), std::string::npos) << what;
+    EXPECT_NE(what.find("1 cut balls went through the front moves"), std::string::npos) << what;
+    EXPECT_NE(what.find("no choice of discs"), std::string::npos) << what;
+  }
+  // The default budget meshes the same ring (the budget only bounds the search).
+  const weave::WeaveResult woven = weave_solids_self_crossing(ring, {}, {}, {}, &solids, report);
+  EXPECT_TRUE(stc::validate_hex_complex(woven.complex, &ring.surface).valid);
+}
+
 TEST(SelfCrossingSolids, MovesOffStillRefusesSelfCrossingLoopsOnAHandle) {
   const std::vector<SurfaceMesh> rotated =
       self_crossing_rotations(test::torus_surface(8, 12, 3.0, 1.0));

@@ -78,6 +78,15 @@ struct HandleDiagnosis {
 [[nodiscard]] HandleDiagnosis diagnose_handles(const SurfaceMesh& mesh,
                                                const HandleOptions& options = {});
 
+/// One cycle per handle, no two sharing a node, each the handle's own cycle or one of its
+/// `alternatives` (same class, so the set is still a basis of the cycles that bound inside):
+/// a depth-first search over the handles in order, each handle's own cycle first, then its
+/// alternatives shortest first; at most `max_tries` partial choices. Empty when none is found
+/// (or `diagnosis` has no handle). Cutting along the discs of cycles that share nodes is not
+/// supported (`weave_solids`), so this is what it cuts.
+[[nodiscard]] std::vector<std::vector<NodeId>> disjoint_handle_cycles(
+    const HandleDiagnosis& diagnosis, std::size_t num_nodes, std::size_t max_tries = 10000);
+
 /// "n12-n40-n7", with `names[v]` the printed id of surface node v (file ids); empty `names`
 /// prints the surface ids.
 [[nodiscard]] std::string cycle_name(const HandleCycle& cycle,

@@ -8,6 +8,7 @@
 /// does, and the glued complex certified there.
 
 #include <array>
+#include <cstddef>
 #include <vector>
 
 #include "stcweave/primal/cut.hpp"
@@ -17,18 +18,41 @@
 
 namespace stcweave::primal {
 
+/// The search bound shared by every ball one call sends through the front moves: the disc
+/// search of `weave_solids` weaves a new ball per disc choice, and without a shared bound each
+/// reran a search of up to `stc::LoopMoveOptions::max_work` (about 30 s on a 2,000-quad ball),
+/// so a solid whose searches give up took minutes. Each ball's search gets what is left (and
+/// at most its own `SelfCrossingOptions::search` bounds); a ball is charged its evaluations
+/// times its face count (the work `stc::untangle_loops` counts per evaluation, the front's
+/// faces), or all that was left when the search stopped at that bound. Counted, not timed, so
+/// the outcome does not depend on the machine.
+struct SharedSearchBudget {
+  /// Face evaluations over every ball (the `max_work` unit). Measured: one ball of the medial
+  /// fertility (2,260 faces) used 1e8 in 38 s without finishing, so this is about 15 s of
+  /// search on such a ball.
+  std::size_t work = 40000000;
+  /// Candidate moves evaluated over every ball (the `max_evaluations` unit).
+  std::size_t evaluations = 200000;
+};
+
 /// Meshes `mesh` (closed, manifold, oriented outward, every handle cycle even) whose loops
 /// may cross themselves, through `weave_solids` with `CutOptions::allow_self_crossing` and a
 /// ball weaver that sends each cut ball with self-intersecting loops to
 /// `weave_self_crossing`. `report` sums the balls' searches and weaves (including discarded
 /// disc choices); its hex counts are those of the returned complex (`hex_rule` "attached",
 /// "pillow", the rest woven) and its `moves` the last ball's that went through the moves.
-/// \throw what `weave_solids` throws; a ball whose search or weave gives up only discards its
-///        disc choice (the next one is tried), and the last failure is in the message.
+/// \throw WeaveError when the shared budget ran out (every later ball is refused at once, so
+///        the disc search ends without weaving), or when no disc choice could be woven and
+///        glued and the search for front moves of some ball gave up: the message says which
+///        bound, how many balls went through the moves, and `weave_solids`'s refusal.
+/// \throw what `weave_solids` throws otherwise; a ball whose search or weave gives up only
+///        discards its disc choice (the next one is tried), and the last failure is in the
+///        message.
 weave::WeaveResult weave_solids_self_crossing(const SurfaceMesh& mesh,
                                               const weave::WeaveOptions& weave_options,
                                               const CutOptions& cut_options,
                                               const SelfCrossingOptions& options,
-                                              SolidsReport* solids, SelfCrossingReport& report);
+                                              SolidsReport* solids, SelfCrossingReport& report,
+                                              const SharedSearchBudget& budget = {});
 
 }  // namespace stcweave::primal
