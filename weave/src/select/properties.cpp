@@ -8,9 +8,12 @@
 
 #include <limits>
 #include <numeric>
+#include <optional>
+#include <utility>
 
 #include "bounded.hpp"
 #include "face_table.hpp"
+#include "one_flood.hpp"
 #include "stcweave/weave/select.hpp"
 
 namespace stcweave::weave {
@@ -289,6 +292,233 @@ std::array<TraceCandidate, 2> extended_properties_in(const Front& front, const F
   return c;
 }
 
+}  // namespace
+
+namespace {
+
+/// True when face side `k` of `f` counts as a non-convex edge of a side with no strip on it
+/// (the test of `extended_properties_in`, with `f < g` for "counted once").
+bool nonconvex_once(const FaceTable& table, FaceIndex f, int k, double flat) {
+  if (table.angle_of(f, k) <= flat) return false;
+  const FaceSide& g = table.across_of(f, k);
+  return g.face == kNoFace || f < g.face;
+}
+
+}  // namespace
+
+ComponentTotals component_totals(const Front& front, const FaceTable& table,
+                                 const FrontComponents& components, double flat) {
+  ComponentTotals t;
+  const std::size_t count = components.size.size();
+  t.faces.assign(count, 0);
+  t.nonconvex.assign(count, 0);
+  t.depths.resize(count);
+  std::vector<std::pair<std::size_t, std::int32_t>> depth_of;  // (component, depth)
+  std::int32_t deepest = 0;
+  for (std::size_t i = 0; i < front.face_capacity(); ++i) {
+    const auto f = static_cast<FaceIndex>(i);
+    if (!front.is_alive(f)) continue;
+    const std::size_t comp = components.component_of[table.nodes_of(f)[0].index()];
+    ++t.faces[comp];
+    for (int k = 0; k < 4; ++k)
+      if (nonconvex_once(table, f, k, flat)) ++t.nonconvex[comp];
+    const std::int32_t d = front.face(f).depth;
+    if (d > 0) {
+      depth_of.emplace_back(comp, d);
+      deepest = std::max(deepest, d);
+    }
+  }
+  std::sort(depth_of.begin(), depth_of.end());
+  for (const auto& [comp, d] : depth_of) {
+    auto& list = t.depths[comp];
+    if (list.empty() || list.back().first != d) list.emplace_back(d, 0);
+    ++list.back().second;
+  }
+  if (deepest <= kMaxDenseDepth) t.depth_count.assign(static_cast<std::size_t>(deepest) + 1, 0);
+  return t;
+}
+
+// Which side is flooded, and why the rest is the other side: select/one_flood.hpp.
+std::optional<std::array<TraceCandidate, 2>> one_flood_properties(
+    const Front& front, const FaceTable& table, const Strip& strip,
+    const FrontComponents& components, ComponentTotals& totals, const ExtendedParameters& par,
+    Marks& nodes, Marks& faces, Marks& faces2) {
+  if (totals.depth_count.empty()) return std::nullopt;
+  const std::uint32_t strip_stamp = faces.fresh(front.face_capacity());
+  for (const stc::StripStep& p : strip) {
+    const auto f = static_cast<std::size_t>(face_of(p));
+    if (faces.is(f, strip_stamp)) return std::nullopt;  // crosses itself
+    faces.set(f, strip_stamp);
+  }
+  const auto on_strip_face = [&](FaceIndex f) {
+    return faces.is(static_cast<std::size_t>(f), strip_stamp);
+  };
+  std::size_t crossed = 0;
+  std::array<std::size_t, 2> side_sharp{0, 0};
+  std::array<std::size_t, 2> nonconvex{0, 0};
+  for (const stc::StripStep& p : strip) {
+    if (table.angle_of(face_of(p), p.entry) <= par.little_sharp) ++crossed;
+    for (std::size_t d = 0; d < 2; ++d) {
+      const int side = d == 0 ? (p.entry + 3) % 4 : (p.entry + 1) % 4;
+      const double a = table.angle_of(face_of(p), side);
+      if (a <= par.sharp) ++side_sharp[d];
+      if (a > par.flat) ++nonconvex[d];
+    }
+  }
+  // Node stamps: strip corners of side A only, of side B only, of both; reached from A, B.
+  const std::array<std::uint32_t, 2> corner{nodes.fresh(front.num_nodes()),
+                                            nodes.fresh(front.num_nodes())};
+  const std::uint32_t both = nodes.fresh(front.num_nodes());
+  const std::array<std::uint32_t, 2> reached{nodes.fresh(front.num_nodes()),
+                                             nodes.fresh(front.num_nodes())};
+  const std::array<std::uint32_t, 2> seen{faces2.fresh(front.face_capacity()),
+                                          faces2.fresh(front.face_capacity())};
+  std::array<std::vector<NodeId>, 2> stack;
+  std::size_t on_strip = 0;
+  for (const stc::StripStep& p : strip) {
+    const stc::Quad& n = table.nodes_of(face_of(p));
+    for (int i = 0; i < 4; ++i) {
+      const NodeId m = quad_at(n, p.entry + i);
+      const std::size_t d = i == 0 || i == 3 ? 0 : 1;  // side A: n[entry], n[entry + 3]
+      const std::uint32_t mark = nodes.get(m.index());
+      if (mark == corner[d] || mark == both) {
+      } else if (mark == corner[1 - d]) {
+        nodes.set(m.index(), both);
+      } else {
+        nodes.set(m.index(), corner[d]);
+        ++on_strip;
+      }
+    }
+    stack[0].push_back(quad_at(n, p.entry));
+    stack[0].push_back(quad_at(n, p.entry + 3));
+    stack[1].push_back(quad_at(n, p.entry + 1));
+    stack[1].push_back(quad_at(n, p.entry + 2));
+  }
+  std::array<std::vector<FaceIndex>, 2> side_faces;
+  std::array<std::size_t, 2> count{0, 0};
+  bool touched = false;
+  const auto expand = [&](std::size_t d) {
+    const NodeId n = stack[d].back();
+    stack[d].pop_back();
+    for (FaceIndex f : table.faces_at(n)) {
+      const auto fi = static_cast<std::size_t>(f);
+      if (on_strip_face(f) || faces2.is(fi, seen[d])) continue;
+      if (faces2.is(fi, seen[1 - d])) {
+        touched = true;
+        return;
+      }
+      faces2.set(fi, seen[d]);
+      side_faces[d].push_back(f);
+      for (NodeId m : table.nodes_of(f)) {
+        const std::uint32_t mark = nodes.get(m.index());
+        if (mark == corner[d] || mark == reached[d]) continue;
+        if (mark == corner[1 - d] || mark == both || mark == reached[1 - d]) {
+          touched = true;
+          return;
+        }
+        nodes.set(m.index(), reached[d]);
+        ++count[d];
+        stack[d].push_back(m);
+      }
+    }
+  };
+  while (!stack[0].empty() && !stack[1].empty()) {
+    expand(0);
+    if (touched) return std::nullopt;
+    if (stack[1].empty()) break;
+    expand(1);
+    if (touched) return std::nullopt;
+  }
+  const std::size_t done = stack[0].empty() ? 0 : 1;
+  const std::size_t other = 1 - done;
+  const std::size_t comp =
+      components.component_of[front.face(face_of(strip.front())).nodes[0].index()];
+  const std::size_t total = components.size[comp];
+  const std::size_t component_faces = totals.faces[comp];
+  if (total < on_strip + count[done] || component_faces < strip.size() + side_faces[done].size())
+    return std::nullopt;
+
+  // The flooded side, as `extended_properties_in` counts it; with what the other side needs:
+  // its faces' non-convex edges counted with no strip, and those across a strip face from a
+  // higher slot (the strip counts them on the side, the totals did not).
+  std::int32_t depth = 0;
+  std::size_t done_plain = 0;     // non-convex edges of the flooded side, counted with no strip
+  std::size_t done_to_strip = 0;  // its non-convex sides across a strip face of a lower slot
+  for (FaceIndex f : side_faces[done]) {
+    const std::int32_t fd = front.face(f).depth;
+    if (fd > 0 && (depth == 0 || fd < depth)) depth = fd;
+    for (int k = 0; k < 4; ++k) {
+      if (table.angle_of(f, k) <= par.flat) continue;
+      const FaceSide& g = table.across_of(f, k);
+      const bool plain = g.face == kNoFace || f < g.face;
+      const bool to_strip = g.face != kNoFace && on_strip_face(g.face);
+      if (plain || to_strip) ++nonconvex[done];
+      if (plain) ++done_plain;
+      if (to_strip && !plain) ++done_to_strip;
+    }
+  }
+  // The strip's faces with no strip counted, and every non-strip face side across a strip face
+  // of a lower slot (found from the strip: the face across each strip side).
+  std::size_t strip_plain = 0;
+  std::size_t all_to_strip = 0;
+  for (const stc::StripStep& p : strip) {
+    const FaceIndex s = face_of(p);
+    for (int j = 0; j < 4; ++j) {
+      if (nonconvex_once(table, s, j, par.flat)) ++strip_plain;
+      const FaceSide& g = table.across_of(s, j);
+      if (g.face == kNoFace || on_strip_face(g.face)) continue;
+      const FaceSide& back = table.across_of(g.face, g.index);
+      if (back.face != s || back.index != j) return std::nullopt;
+      if (!(table.angle_of(g.face, g.index) <= par.flat) && g.face > s) ++all_to_strip;
+    }
+  }
+  const std::size_t other_plain = totals.nonconvex[comp] - done_plain - strip_plain;
+  nonconvex[other] += other_plain + (all_to_strip - done_to_strip);
+
+  // The other side's least positive depth: the component's depths less this side's and the
+  // strip's.
+  std::vector<std::size_t>& seen_depth = totals.depth_count;
+  const auto tally = [&](FaceIndex f, int delta) {
+    const std::int32_t fd = front.face(f).depth;
+    if (fd > 0) seen_depth[static_cast<std::size_t>(fd)] += static_cast<std::size_t>(delta);
+  };
+  for (FaceIndex f : side_faces[done]) tally(f, 1);
+  for (const stc::StripStep& p : strip) tally(face_of(p), 1);
+  std::int32_t other_depth = 0;
+  for (const auto& [d, n] : totals.depths[comp]) {
+    if (n > seen_depth[static_cast<std::size_t>(d)]) {
+      other_depth = d;
+      break;
+    }
+  }
+  for (FaceIndex f : side_faces[done]) tally(f, -1);
+  for (const stc::StripStep& p : strip) tally(face_of(p), -1);
+
+  std::array<TraceCandidate, 2> c;
+  const std::array<std::size_t, 2> collapsed{
+      done == 0 ? side_faces[0].size() : component_faces - strip.size() - side_faces[1].size(),
+      done == 1 ? side_faces[1].size() : component_faces - strip.size() - side_faces[0].size()};
+  const std::array<std::size_t, 2> strict{done == 0 ? count[0] : total - on_strip - count[1],
+                                          done == 1 ? count[1] : total - on_strip - count[0]};
+  for (std::size_t d = 0; d < 2; ++d) {
+    TraceCandidate& x = c[d];
+    x.faces_collapsed = collapsed[d] + strip.size();
+    x.depth = d == done ? depth : other_depth;
+    x.crossed_sharp = crossed;
+    x.side_sharp = side_sharp[d];
+    x.nonconvex_on_side = nonconvex[d];
+    x.side = static_cast<int>(d);
+    x.length = strip.size();
+    x.self_intersecting = false;
+    x.on_strip = on_strip;
+    x.strictly_on_side = strict[d];
+    x.weight = x.strictly_on_side + on_strip;
+  }
+  return c;
+}
+
+namespace {
+
 /// `parallel_loop` with the front's neighbours and edge angles read from `table`.
 std::int32_t parallel_loop_in(const FaceTable& table, const Strip& strip, stc::LoopSide side,
                               const FrontLoops& loops, const ExtendedParameters& parameters) {
@@ -333,12 +563,20 @@ std::vector<TraceCandidate> loop_candidates(const Front& front, const FrontLoops
   std::vector<TraceCandidate> out;
   out.reserve(loops.strips.size() * 2);
   const FaceTable table = face_table(front, geometric);
+  ComponentTotals totals;
+  if (geometric) totals = component_totals(front, table, components, parameters.flat);
   for (std::size_t l = 0; l < loops.strips.size(); ++l) {
     const Strip& strip = loops.strips[l];
-    const auto pair = geometric ? extended_properties_in(front, table, strip, components,
-                                                         parameters, nodes, faces, faces2)
-                                : weigh_within(front, table, strip, components, nodes, faces,
-                                               {kNoLimit, kNoLimit}, nullptr);
+    std::optional<std::array<TraceCandidate, 2>> one;
+    if (geometric) {
+      one = one_flood_properties(front, table, strip, components, totals, parameters, nodes, faces,
+                                 faces2);
+    }
+    const auto pair = one         ? *one
+                      : geometric ? extended_properties_in(front, table, strip, components,
+                                                           parameters, nodes, faces, faces2)
+                                  : weigh_within(front, table, strip, components, nodes, faces,
+                                                 {kNoLimit, kNoLimit}, nullptr);
     for (TraceCandidate c : pair) {
       c.loop = static_cast<std::int32_t>(l);
       if (geometric && parameters.parallel_crossing && !c.self_intersecting) {
