@@ -104,12 +104,13 @@ std::string differences(const TraceCandidate& a, const TraceCandidate& b) {
 struct OneFloodCount {
   std::size_t one = 0;   // loops whose properties came from one flood
   std::size_t both = 0;  // loops left to the two floods
+  std::size_t kept = 0;  // loops whose flooded side came from the previous selections
 };
 
 /// Shrinks `steps` loops of `surface`'s front (side angles mixed per face and side, so that
 /// the non-convex counts are not all zero; depths come from the shrinks): at every front, each
 /// loop's one-flood properties, when given, and `loop_candidates`'s must be those of
-/// `extended_properties` field for field.
+/// `extended_properties` field for field, also those of sides kept from earlier fronts.
 OneFloodCount expect_one_flood_exact(const stc::QuadSurface& surface, std::size_t steps,
                                      const std::string& what) {
   WeaveOptions options;
@@ -124,20 +125,22 @@ OneFloodCount expect_one_flood_exact(const stc::QuadSurface& surface, std::size_
   const ExtendedParameters& par = options.extended;
   Marks nodes, faces, faces2;
   OneFloodCount count;
+  SideCache cache;
   for (std::size_t step = 0; step < steps && state.front.num_faces() > 0; ++step) {
     const Front& front = state.front;
     const FrontLoops loops = front_loops(front);
     const FrontComponents comps = front_components(front, nodes);
     const FaceTable table = face_table(front);
     ComponentTotals totals = component_totals(front, table, comps, par.flat);
+    cache.begin(front, table);
     const std::vector<TraceCandidate> all =
         loop_candidates(front, loops, comps, true, par, nodes, faces, faces2);
     EXPECT_EQ(all.size(), 2 * loops.strips.size()) << what;
     for (std::size_t l = 0; l < loops.strips.size(); ++l) {
       const Strip& strip = loops.strips[l];
       const auto ref = extended_properties(front, strip, comps, par, nodes, faces, faces2);
-      const auto one =
-          one_flood_properties(front, table, strip, comps, totals, par, nodes, faces, faces2);
+      const auto one = one_flood_properties(front, table, strip, comps, totals, par, nodes, faces,
+                                            faces2, &cache);
       ++(one ? count.one : count.both);
       for (std::size_t d = 0; d < 2; ++d) {
         const std::string where = what + ", step " + std::to_string(step) + ", loop " +
@@ -147,6 +150,7 @@ OneFloodCount expect_one_flood_exact(const stc::QuadSurface& surface, std::size_
           EXPECT_EQ(differences(all[2 * l + d], ref[d]), "") << where << " (loop_candidates)";
       }
     }
+    cache.end();
     if (step + 1 == steps) break;
     // the next front: the first candidate that shrinks, then seams
     bool shrunk = false;
@@ -163,12 +167,14 @@ OneFloodCount expect_one_flood_exact(const stc::QuadSurface& surface, std::size_
     if (!shrunk) break;
     seam_fixpoint(state, ctx);
   }
+  count.kept = cache.hits;
   return count;
 }
 
 TEST(OneFlood, MatchesBothFloodsOnBoxesAndAnLBlock) {
   const OneFloodCount box = expect_one_flood_exact(test::box_surface(4, 3, 5).surface, 12, "box");
   EXPECT_GT(box.one, 0U) << "a box's loops separate it: one flood each";
+  EXPECT_GT(box.kept, 0U) << "loops away from a shrink keep their flooded side";
   const OneFloodCount lblock =
       expect_one_flood_exact(test::voxel_surface(test::lblock_cells()).surface, 12, "lblock");
   EXPECT_GT(lblock.one, 0U);
