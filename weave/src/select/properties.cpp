@@ -6,11 +6,16 @@
 #include <algorithm>
 #include <cmath>
 
+#include <iterator>
 #include <limits>
 #include <numeric>
+#include <optional>
+#include <span>
+#include <utility>
 
 #include "bounded.hpp"
 #include "face_table.hpp"
+#include "one_flood.hpp"
 #include "stcweave/weave/select.hpp"
 
 namespace stcweave::weave {
@@ -289,6 +294,357 @@ std::array<TraceCandidate, 2> extended_properties_in(const Front& front, const F
   return c;
 }
 
+}  // namespace
+
+namespace {
+
+/// True when face side `k` of `f` counts as a non-convex edge of a side with no strip on it
+/// (the test of `extended_properties_in`, with `f < g` for "counted once").
+bool nonconvex_once(const FaceTable& table, FaceIndex f, int k, double flat) {
+  if (table.angle_of(f, k) <= flat) return false;
+  const FaceSide& g = table.across_of(f, k);
+  return g.face == kNoFace || f < g.face;
+}
+
+}  // namespace
+
+ComponentTotals component_totals(const Front& front, const FaceTable& table,
+                                 const FrontComponents& components, double flat) {
+  ComponentTotals t;
+  const std::size_t count = components.size.size();
+  t.faces.assign(count, 0);
+  t.nonconvex.assign(count, 0);
+  t.depths.resize(count);
+  std::vector<std::pair<std::size_t, std::int32_t>> depth_of;  // (component, depth)
+  std::int32_t deepest = 0;
+  for (std::size_t i = 0; i < front.face_capacity(); ++i) {
+    const auto f = static_cast<FaceIndex>(i);
+    if (!front.is_alive(f)) continue;
+    const std::size_t comp = components.component_of[table.nodes_of(f)[0].index()];
+    ++t.faces[comp];
+    for (int k = 0; k < 4; ++k)
+      if (nonconvex_once(table, f, k, flat)) ++t.nonconvex[comp];
+    const std::int32_t d = front.face(f).depth;
+    if (d > 0) {
+      depth_of.emplace_back(comp, d);
+      deepest = std::max(deepest, d);
+    }
+  }
+  std::sort(depth_of.begin(), depth_of.end());
+  for (const auto& [comp, d] : depth_of) {
+    auto& list = t.depths[comp];
+    if (list.empty() || list.back().first != d) list.emplace_back(d, 0);
+    ++list.back().second;
+  }
+  if (deepest <= kMaxDenseDepth) t.depth_count.assign(static_cast<std::size_t>(deepest) + 1, 0);
+  return t;
+}
+
+// Which side is flooded, and why the rest is the other side: select/one_flood.hpp.
+// ---------------------------------------------------------------------------------------
+// the sides kept between selections
+
+void SideCache::begin(const Front& front, const FaceTable& table) {
+  std::vector<Slot> now(front.face_capacity());
+  for (std::size_t i = 0; i < now.size(); ++i) {
+    const auto f = static_cast<FaceIndex>(i);
+    Slot& x = now[i];
+    x.alive = front.is_alive(f);
+    if (!x.alive) continue;
+    x.nodes = table.nodes_of(f);
+    x.depth = front.face(f).depth;
+    for (int k = 0; k < 4; ++k) {
+      x.across[static_cast<std::size_t>(k)] = table.across_of(f, k);
+      x.angle[static_cast<std::size_t>(k)] = table.angle_of(f, k);
+    }
+  }
+  // The nodes of every slot that changed, before and after: a kept side none of whose nodes
+  // (nor its strip's) is among them reads the same faces, depths and angles as then.
+  std::vector<NodeId> touched;
+  std::vector<char> is_touched(front.num_nodes(), 0);
+  const auto touch = [&](const Slot& x) {
+    if (!x.alive) return;
+    for (NodeId n : x.nodes) {
+      if (n.index() >= is_touched.size()) is_touched.resize(n.index() + 1, 0);
+      if (is_touched[n.index()] != 0) continue;
+      is_touched[n.index()] = 1;
+      touched.push_back(n);
+    }
+  };
+  const Slot dead;
+  for (std::size_t i = 0; i < std::max(now.size(), slots_.size()); ++i) {
+    const Slot& was = i < slots_.size() ? slots_[i] : dead;
+    const Slot& is = i < now.size() ? now[i] : dead;
+    if (was.alive == is.alive && (!is.alive || (was.nodes == is.nodes && was.depth == is.depth &&
+                                                was.angle == is.angle && same_across(was, is))))
+      continue;
+    touch(was);
+    touch(is);
+  }
+  slots_ = std::move(now);
+  if (touched.size() > front.num_nodes() / 4) {
+    entries_.clear();  // another front, or most of it changed
+    return;
+  }
+  for (auto it = entries_.begin(); it != entries_.end();) {
+    const std::vector<std::uint64_t>& bits = it->second.bits;
+    const bool hit = std::any_of(touched.begin(), touched.end(), [&](NodeId n) {
+      const std::size_t w = n.index() / 64;
+      return w < bits.size() && ((bits[w] >> (n.index() % 64)) & 1U) != 0;
+    });
+    if (hit) {
+      it = entries_.erase(it);
+    } else {
+      it->second.used = false;
+      ++it;
+    }
+  }
+}
+
+bool SideCache::same_across(const Slot& a, const Slot& b) {
+  for (std::size_t k = 0; k < 4; ++k)
+    if (a.across[k].face != b.across[k].face || a.across[k].index != b.across[k].index)
+      return false;
+  return true;
+}
+
+void SideCache::end() {
+  for (auto it = entries_.begin(); it != entries_.end();)
+    it = it->second.used ? std::next(it) : entries_.erase(it);
+}
+
+std::uint64_t SideCache::key(const Strip& strip) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(face_of(strip.front()))) << 2U) |
+         static_cast<std::uint64_t>(strip.front().entry & 3);
+}
+
+const FloodedSide* SideCache::find(const Strip& strip) {
+  const auto it = entries_.find(key(strip));
+  if (it == entries_.end() || it->second.strip != strip) {
+    ++misses;
+    return nullptr;
+  }
+  it->second.used = true;
+  ++hits;
+  return &it->second.side;
+}
+
+void SideCache::keep(const Strip& strip, const FloodedSide& side, std::span<const NodeId> nodes) {
+  Entry e;
+  e.strip = strip;
+  e.side = side;
+  e.used = true;
+  for (NodeId n : nodes) {
+    const std::size_t w = n.index() / 64;
+    if (w >= e.bits.size()) e.bits.resize(w + 1, 0);
+    e.bits[w] |= std::uint64_t{1} << (n.index() % 64);
+  }
+  entries_[key(strip)] = std::move(e);
+}
+
+std::optional<std::array<TraceCandidate, 2>> one_flood_properties(
+    const Front& front, const FaceTable& table, const Strip& strip,
+    const FrontComponents& components, ComponentTotals& totals, const ExtendedParameters& par,
+    Marks& nodes, Marks& faces, Marks& faces2, SideCache* cache) {
+  if (totals.depth_count.empty()) return std::nullopt;
+  const std::uint32_t strip_stamp = faces.fresh(front.face_capacity());
+  for (const stc::StripStep& p : strip) {
+    const auto f = static_cast<std::size_t>(face_of(p));
+    if (faces.is(f, strip_stamp)) return std::nullopt;  // crosses itself
+    faces.set(f, strip_stamp);
+  }
+  const auto on_strip_face = [&](FaceIndex f) {
+    return faces.is(static_cast<std::size_t>(f), strip_stamp);
+  };
+  std::size_t crossed = 0;
+  std::array<std::size_t, 2> side_sharp{0, 0};
+  std::array<std::size_t, 2> nonconvex{0, 0};
+  for (const stc::StripStep& p : strip) {
+    if (table.angle_of(face_of(p), p.entry) <= par.little_sharp) ++crossed;
+    for (std::size_t d = 0; d < 2; ++d) {
+      const int side = d == 0 ? (p.entry + 3) % 4 : (p.entry + 1) % 4;
+      const double a = table.angle_of(face_of(p), side);
+      if (a <= par.sharp) ++side_sharp[d];
+      if (a > par.flat) ++nonconvex[d];
+    }
+  }
+  // Node stamps: strip corners of side A only, of side B only, of both; reached from A, B.
+  const std::array<std::uint32_t, 2> corner{nodes.fresh(front.num_nodes()),
+                                            nodes.fresh(front.num_nodes())};
+  const std::uint32_t both = nodes.fresh(front.num_nodes());
+  const std::array<std::uint32_t, 2> reached{nodes.fresh(front.num_nodes()),
+                                             nodes.fresh(front.num_nodes())};
+  std::array<std::vector<NodeId>, 2> stack;
+  std::vector<NodeId> strip_nodes;
+  for (const stc::StripStep& p : strip) {
+    const stc::Quad& n = table.nodes_of(face_of(p));
+    for (int i = 0; i < 4; ++i) {
+      const NodeId m = quad_at(n, p.entry + i);
+      const std::size_t d = i == 0 || i == 3 ? 0 : 1;  // side A: n[entry], n[entry + 3]
+      const std::uint32_t mark = nodes.get(m.index());
+      if (mark == corner[d] || mark == both) {
+      } else if (mark == corner[1 - d]) {
+        nodes.set(m.index(), both);
+      } else {
+        nodes.set(m.index(), corner[d]);
+        strip_nodes.push_back(m);
+      }
+    }
+    stack[0].push_back(quad_at(n, p.entry));
+    stack[0].push_back(quad_at(n, p.entry + 3));
+    stack[1].push_back(quad_at(n, p.entry + 1));
+    stack[1].push_back(quad_at(n, p.entry + 2));
+  }
+  const std::size_t on_strip = strip_nodes.size();
+
+  FloodedSide flooded;
+  if (const FloodedSide* kept = cache != nullptr ? cache->find(strip) : nullptr) {
+    flooded = *kept;
+  } else {
+    const std::array<std::uint32_t, 2> seen{faces2.fresh(front.face_capacity()),
+                                            faces2.fresh(front.face_capacity())};
+    std::array<std::vector<FaceIndex>, 2> side_faces;
+    std::array<std::vector<NodeId>, 2> side_nodes;
+    bool touched = false;
+    const auto expand = [&](std::size_t d) {
+      const NodeId n = stack[d].back();
+      stack[d].pop_back();
+      for (FaceIndex f : table.faces_at(n)) {
+        const auto fi = static_cast<std::size_t>(f);
+        if (on_strip_face(f) || faces2.is(fi, seen[d])) continue;
+        if (faces2.is(fi, seen[1 - d])) {
+          touched = true;
+          return;
+        }
+        faces2.set(fi, seen[d]);
+        side_faces[d].push_back(f);
+        for (NodeId m : table.nodes_of(f)) {
+          const std::uint32_t mark = nodes.get(m.index());
+          if (mark == corner[d] || mark == reached[d]) continue;
+          if (mark == corner[1 - d] || mark == both || mark == reached[1 - d]) {
+            touched = true;
+            return;
+          }
+          nodes.set(m.index(), reached[d]);
+          side_nodes[d].push_back(m);
+          stack[d].push_back(m);
+        }
+      }
+    };
+    while (!stack[0].empty() && !stack[1].empty()) {
+      expand(0);
+      if (touched) return std::nullopt;
+      if (stack[1].empty()) break;
+      expand(1);
+      if (touched) return std::nullopt;
+    }
+    const std::size_t done = stack[0].empty() ? 0 : 1;
+    // The flooded side, as `extended_properties_in` counts it; with what the other side needs:
+    // its faces' non-convex edges counted with no strip, and those across a strip face from a
+    // lower slot (the strip counts them on the side, the totals did not).
+    flooded.side = done;
+    flooded.nodes = side_nodes[done].size();
+    flooded.faces = side_faces[done].size();
+    std::vector<std::size_t>& count = totals.depth_count;
+    for (FaceIndex f : side_faces[done]) {
+      const std::int32_t fd = front.face(f).depth;
+      if (fd > 0) {
+        if (flooded.depth == 0 || fd < flooded.depth) flooded.depth = fd;
+        if (count[static_cast<std::size_t>(fd)]++ == 0) flooded.depths.emplace_back(fd, 0);
+      }
+      for (int k = 0; k < 4; ++k) {
+        if (table.angle_of(f, k) <= par.flat) continue;
+        const FaceSide& g = table.across_of(f, k);
+        const bool plain = g.face == kNoFace || f < g.face;
+        const bool to_strip = g.face != kNoFace && on_strip_face(g.face);
+        if (plain || to_strip) ++flooded.nonconvex;
+        if (plain) ++flooded.plain;
+        if (to_strip && !plain) ++flooded.to_strip;
+      }
+    }
+    std::sort(flooded.depths.begin(), flooded.depths.end());
+    for (auto& [d, n] : flooded.depths) {
+      n = count[static_cast<std::size_t>(d)];
+      count[static_cast<std::size_t>(d)] = 0;
+    }
+    if (cache != nullptr) {
+      side_nodes[done].insert(side_nodes[done].end(), strip_nodes.begin(), strip_nodes.end());
+      cache->keep(strip, flooded, side_nodes[done]);
+    }
+  }
+  const std::size_t done = flooded.side;
+  const std::size_t other = 1 - done;
+  const std::size_t comp =
+      components.component_of[front.face(face_of(strip.front())).nodes[0].index()];
+  const std::size_t total = components.size[comp];
+  const std::size_t component_faces = totals.faces[comp];
+  if (total < on_strip + flooded.nodes || component_faces < strip.size() + flooded.faces)
+    return std::nullopt;
+  nonconvex[done] += flooded.nonconvex;
+
+  // The strip's faces with no strip counted, and every non-strip face side across a strip face
+  // of a lower slot (found from the strip: the face across each strip side).
+  std::size_t strip_plain = 0;
+  std::size_t all_to_strip = 0;
+  for (const stc::StripStep& p : strip) {
+    const FaceIndex s = face_of(p);
+    for (int j = 0; j < 4; ++j) {
+      if (nonconvex_once(table, s, j, par.flat)) ++strip_plain;
+      const FaceSide& g = table.across_of(s, j);
+      if (g.face == kNoFace || on_strip_face(g.face)) continue;
+      const FaceSide& back = table.across_of(g.face, g.index);
+      if (back.face != s || back.index != j) return std::nullopt;
+      if (!(table.angle_of(g.face, g.index) <= par.flat) && g.face > s) ++all_to_strip;
+    }
+  }
+  const std::size_t other_plain = totals.nonconvex[comp] - flooded.plain - strip_plain;
+  nonconvex[other] += other_plain + (all_to_strip - flooded.to_strip);
+
+  // The other side's least positive depth: the component's depths less the flooded side's and
+  // the strip's.
+  std::vector<std::size_t>& strip_depths = totals.depth_count;
+  const auto tally = [&](int delta) {
+    for (const stc::StripStep& p : strip) {
+      const std::int32_t fd = front.face(face_of(p)).depth;
+      if (fd > 0) strip_depths[static_cast<std::size_t>(fd)] += static_cast<std::size_t>(delta);
+    }
+  };
+  tally(1);
+  std::int32_t other_depth = 0;
+  auto side_at = flooded.depths.begin();
+  for (const auto& [d, n] : totals.depths[comp]) {
+    while (side_at != flooded.depths.end() && side_at->first < d) ++side_at;
+    const std::size_t on_side =
+        side_at != flooded.depths.end() && side_at->first == d ? side_at->second : 0;
+    if (n > on_side + strip_depths[static_cast<std::size_t>(d)]) {
+      other_depth = d;
+      break;
+    }
+  }
+  tally(-1);
+
+  std::array<TraceCandidate, 2> c;
+  for (std::size_t d = 0; d < 2; ++d) {
+    TraceCandidate& x = c[d];
+    const bool is_done = d == done;
+    x.faces_collapsed =
+        (is_done ? flooded.faces : component_faces - strip.size() - flooded.faces) + strip.size();
+    x.depth = is_done ? flooded.depth : other_depth;
+    x.crossed_sharp = crossed;
+    x.side_sharp = side_sharp[d];
+    x.nonconvex_on_side = nonconvex[d];
+    x.side = static_cast<int>(d);
+    x.length = strip.size();
+    x.self_intersecting = false;
+    x.on_strip = on_strip;
+    x.strictly_on_side = is_done ? flooded.nodes : total - on_strip - flooded.nodes;
+    x.weight = x.strictly_on_side + on_strip;
+  }
+  return c;
+}
+
+namespace {
+
 /// `parallel_loop` with the front's neighbours and edge angles read from `table`.
 std::int32_t parallel_loop_in(const FaceTable& table, const Strip& strip, stc::LoopSide side,
                               const FrontLoops& loops, const ExtendedParameters& parameters) {
@@ -333,12 +689,26 @@ std::vector<TraceCandidate> loop_candidates(const Front& front, const FrontLoops
   std::vector<TraceCandidate> out;
   out.reserve(loops.strips.size() * 2);
   const FaceTable table = face_table(front, geometric);
+  ComponentTotals totals;
+  // The sides one flood found, kept between this thread's selections: a hint only, every
+  // kept side is checked against the front (SideCache::begin), so it never changes a result.
+  thread_local SideCache cache;
+  if (geometric) {
+    totals = component_totals(front, table, components, parameters.flat);
+    cache.begin(front, table);
+  }
   for (std::size_t l = 0; l < loops.strips.size(); ++l) {
     const Strip& strip = loops.strips[l];
-    const auto pair = geometric ? extended_properties_in(front, table, strip, components,
-                                                         parameters, nodes, faces, faces2)
-                                : weigh_within(front, table, strip, components, nodes, faces,
-                                               {kNoLimit, kNoLimit}, nullptr);
+    std::optional<std::array<TraceCandidate, 2>> one;
+    if (geometric) {
+      one = one_flood_properties(front, table, strip, components, totals, parameters, nodes, faces,
+                                 faces2, &cache);
+    }
+    const auto pair = one         ? *one
+                      : geometric ? extended_properties_in(front, table, strip, components,
+                                                           parameters, nodes, faces, faces2)
+                                  : weigh_within(front, table, strip, components, nodes, faces,
+                                                 {kNoLimit, kNoLimit}, nullptr);
     for (TraceCandidate c : pair) {
       c.loop = static_cast<std::int32_t>(l);
       if (geometric && parameters.parallel_crossing && !c.self_intersecting) {
@@ -348,6 +718,7 @@ std::vector<TraceCandidate> loop_candidates(const Front& front, const FrontLoops
       out.push_back(c);
     }
   }
+  if (geometric) cache.end();
   return out;
 }
 
