@@ -4,6 +4,7 @@
 #include <optional>
 #include <utility>
 
+#include "position_pinch.hpp"
 #include "stcweave/primal/cut.hpp"
 #include "stcweave/primal/edge_angles.hpp"
 #include "stcweave/primal/pillow.hpp"
@@ -107,6 +108,22 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
     // A pillowed complex that is not a hex complex with the input as boundary is a bug.
     r.validation = stc::validate_hex_complex(r.mesh.complex, &r.surface.surface);
     if (!r.validation.valid && !options.keep_invalid) stc::require_valid(r.validation);
+  }
+  // Pinched face pairs (docs/geometry.md "Pinched faces") keep a flat corner whatever the
+  // positions: pillow a 2-hex block at each (interior nodes only); no-op without one.
+  if (r.validation.valid) {
+    const UnpinchReport u = unpinch(r.mesh, r.surface.surface.num_nodes, r.surface.surface);
+    r.pillow.pinched_pairs = u.pinched_before;
+    r.pillow.unpinch_blocks = u.blocks;
+    r.pillow.unpinch_hexes = u.hexes_added;
+    r.pillow.pinched_left = u.pinched_after;
+    if (u.blocks > 0) {
+      r.validation = stc::validate_hex_complex(r.mesh.complex, &r.surface.surface);
+      r.pillow.reason += "; " + std::to_string(u.pinched_before) + " pinched face pairs, " +
+                         std::to_string(u.blocks) + " 2-hex blocks pillowed (" +
+                         std::to_string(u.hexes_added) + " hexes), " +
+                         std::to_string(u.pinched_after) + " left";
+    }
   }
   r.seconds.pillow = clock.lap();
 
