@@ -291,7 +291,8 @@ int run_mesh(const MeshArgs& a) {
   const auto t1 = std::chrono::steady_clock::now();
   primal::WeaveHistory history = primal::weave_history(r.woven, digest.get());
   // The pillow stage appends its hexes after the woven ones.
-  if (r.pillow.applied) primal::append_hexes(history, r.mesh.complex.hexes.size(), "pillow");
+  if (r.pillow.applied || r.pillow.unpinch_blocks > 0)
+    primal::append_hexes(history, r.mesh.complex.hexes.size(), "pillow");
   const primal::MeshData cell_data =
       want_cell_data ? primal::hex_mesh_data(r.mesh, stc, &history) : primal::MeshData{};
   if (write_mesh)
@@ -340,6 +341,12 @@ int run_mesh(const MeshArgs& a) {
                       {"nodes_added", r.pillow.nodes_added},
                       {"hexes_added", r.pillow.hexes_added},
                       {"compared", r.pillow.compared}};
+  if (r.pillow.pinched_pairs > 0) {
+    report["pillow"]["pinched_pairs"] = r.pillow.pinched_pairs;
+    report["pillow"]["unpinch_blocks"] = r.pillow.unpinch_blocks;
+    report["pillow"]["unpinch_hexes"] = r.pillow.unpinch_hexes;
+    report["pillow"]["pinched_left"] = r.pillow.pinched_left;
+  }
   report["untangled"] = options.untangle;
   if (options.untangle) report["position"] = position_json(r.position);
   const auto& s = r.woven.stats;

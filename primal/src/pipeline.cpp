@@ -4,6 +4,7 @@
 #include <optional>
 #include <utility>
 
+#include "position_pinch.hpp"
 #include "stcweave/primal/cut.hpp"
 #include "stcweave/primal/edge_angles.hpp"
 #include "stcweave/primal/pillow.hpp"
@@ -108,6 +109,32 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
     r.validation = stc::validate_hex_complex(r.mesh.complex, &r.surface.surface);
     if (!r.validation.valid && !options.keep_invalid) stc::require_valid(r.validation);
   }
+  // Pinched face pairs (docs/geometry.md "Pinched faces") keep a flat corner whatever the
+  // positions: pillow a 2-hex block at each (interior nodes only); no-op without one. The
+  // result is then validated with the pinched-pair check: one left is refused, not output.
+  if (r.validation.valid) {
+    const UnpinchReport u = unpinch(r.mesh, r.surface.surface.num_nodes, r.surface.surface);
+    r.pillow.pinched_pairs = u.pinched_before;
+    r.pillow.unpinch_blocks = u.blocks;
+    r.pillow.unpinch_hexes = u.hexes_added;
+    r.pillow.pinched_left = u.pinched_after;
+    if (u.pinched_before > 0) {
+      r.pillow.reason += "; " + std::to_string(u.pinched_before) + " pinched face pairs, " +
+                         std::to_string(u.blocks) + " 2-hex blocks pillowed (" +
+                         std::to_string(u.hexes_added) + " hexes), " +
+                         std::to_string(u.pinched_after) + " left";
+      r.validation = stc::validate_hex_complex(r.mesh.complex, &r.surface.surface, true);
+      if (!r.validation.valid && !options.keep_invalid) {
+        throw InternalError(
+            "the woven complex has " + std::to_string(u.pinched_after) +
+            " pinched face pairs (two faces sharing two edges at a node, no placement makes "
+            "the hexes there valid; " +
+            r.validation.summary() + ") that no pillow of a 2-hex block of interior nodes " +
+            "removes" + (r.pillow.applied ? std::string() : std::string(": try --pillow always")) +
+            " (--keep-invalid writes the mesh anyway)");
+      }
+    }
+  }
   r.seconds.pillow = clock.lap();
 
   if (options.untangle) {
@@ -129,7 +156,8 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
       if (!keep) {
         r.mesh = std::move(*woven_mesh);
         r.position = std::move(unpillowed);
-        r.validation = stc::validate_hex_complex(r.mesh.complex, &r.surface.surface);
+        r.validation = stc::validate_hex_complex(r.mesh.complex, &r.surface.surface,
+                                                 r.pillow.pinched_pairs > 0);
       }
     }
     r.seconds.position = clock.lap();

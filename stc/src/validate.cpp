@@ -124,6 +124,8 @@ std::string_view invariant_name(Invariant invariant) {
       return "extra_boundary_quad";
     case Invariant::ReversedBoundaryQuad:
       return "reversed_boundary_quad";
+    case Invariant::PinchedFacePair:
+      return "pinched_face_pair";
     case Invariant::EulerCharacteristic:
       return "euler_characteristic";
   }
@@ -157,7 +159,8 @@ std::string ValidationReport::summary() const {
 }
 
 ValidationReport validate_hex_complex(const HexComplex& complex,
-                                      const QuadSurface* expected_boundary) {
+                                      const QuadSurface* expected_boundary,
+                                      bool check_pinched_faces) {
   ValidationReport report;
   const std::size_t num_hexes = complex.hexes.size();
   const std::size_t num_nodes = complex.num_nodes;
@@ -459,6 +462,30 @@ ValidationReport validate_hex_complex(const HexComplex& complex,
     euler.add("chi(volume)=" + std::to_string(report.euler_volume) +
               " chi(boundary)=" + std::to_string(report.euler_boundary));
     euler.flush(report);
+  }
+
+  // 8. Pinched face pairs: two distinct faces with the same corner (node and its two face
+  // neighbours); reported as n-a-b, the node and the two shared neighbours.
+  if (check_pinched_faces) {
+    Collector pinched(Invariant::PinchedFacePair);
+    std::vector<std::array<std::int32_t, 3>> corners;
+    corners.reserve(4 * num_faces);
+    for (std::uint32_t f = 0; f < num_faces; ++f) {
+      const std::uint32_t slot = face_slots[face_begin[f]];
+      const Quad q = hex_face(complex.hexes[slot / 6], static_cast<int>(slot % 6));
+      for (std::size_t i = 0; i < 4; ++i) {
+        const std::int32_t x = q[(i + 1) % 4].value();
+        const std::int32_t y = q[(i + 3) % 4].value();
+        corners.push_back({q[i].value(), std::min(x, y), std::max(x, y)});
+      }
+    }
+    std::sort(corners.begin(), corners.end());
+    for (std::size_t i = 1; i < corners.size(); ++i) {
+      if (corners[i] != corners[i - 1]) continue;
+      pinched.add(NodeId(corners[i][0]).str() + "-" + NodeId(corners[i][1]).str() + "-" +
+                  NodeId(corners[i][2]).str());
+    }
+    pinched.flush(report);
   }
   return report;
 }

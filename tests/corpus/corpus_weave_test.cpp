@@ -100,12 +100,9 @@ const std::map<std::string, NotStructured>& not_structured() {
 const std::map<std::string, const char*>& known_inverted() {
   // cylinder_a6_trisubdiv_coarse was here (~1,300 woven hexes, 42 inverted) until the second
   // convex filter stopped weighing the larger side of a loop (docs/extended-rules.md).
-  static const std::map<std::string, const char*> files = {
-      {"real/mesquite/pave2.e.vtk",
-       "extended weaves it to 2,846 hexes since the depth filter moved after the convex "
-       "filters (3,700 before, 0 inverted then); pillowed and untangled, 2 hexes stay "
-       "inverted at 2 pinched face pairs (two faces sharing two edges at a node: a corner "
-       "there is flat whatever the positions; docs/geometry.md \"Repair\"); open"}};
+  // real/mesquite/pave2.e.vtk was here (2 hexes inverted at 2 pinched face pairs) until the
+  // pipeline pillowed a 2-hex block at each pair (unpinch, docs/geometry.md "Pinched faces").
+  static const std::map<std::string, const char*> files = {};
   return files;
 }
 
@@ -136,6 +133,9 @@ TEST_P(CorpusWeaveFile, GivesAValidUninvertedMesh) {
   const stc::ValidationReport v = stc::validate_hex_complex(r.mesh.complex, &r.surface.surface);
   EXPECT_TRUE(v.valid) << v.summary();
   EXPECT_TRUE(v.boundary_compared);
+  // No pinched face pair is left (a flat corner whatever the positions).
+  EXPECT_EQ(r.pillow.pinched_left, 0u);
+  EXPECT_TRUE(stc::validate_hex_complex(r.mesh.complex, &r.surface.surface, true).valid);
   ASSERT_GT(r.mesh.complex.hexes.size(), 0u);
   RecordProperty("hexes", static_cast<int>(r.mesh.complex.hexes.size()));
   RecordProperty("pillowed", r.pillow.applied ? 1 : 0);

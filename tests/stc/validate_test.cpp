@@ -9,6 +9,7 @@
 
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/stc/hex_complex.hpp"
+#include "support/pinched_star.hpp"
 #include "support/shapes.hpp"
 
 namespace stcweave::stc {
@@ -276,6 +277,33 @@ TEST(UniqueEdges, OfABoxAreItsGridEdgesSortedOnce) {
   EXPECT_TRUE(std::is_sorted(edges.begin(), edges.end()));
   EXPECT_TRUE(std::adjacent_find(edges.begin(), edges.end()) == edges.end());
   for (const auto& [a, b] : edges) EXPECT_LT(a, b);
+}
+
+TEST(Validate, PinchedFacePairIsReportedOnlyWhenAsked) {
+  // Eight hexes around one node whose link has two edges between the same two vertices:
+  // the faces n26-n0-x-n1 of two different hexes share the edges n26-n0 and n26-n1.
+  const HexComplex star = test::pinched_star().complex;
+  QuadSurface boundary = boundary_surface(star);
+  boundary.num_nodes = 26;
+  const ValidationReport plain = validate_hex_complex(star, &boundary);
+  EXPECT_TRUE(plain.valid) << plain.summary();
+  const ValidationReport strict = validate_hex_complex(star, &boundary, true);
+  EXPECT_FALSE(strict.valid);
+  EXPECT_EQ(violated(strict), std::set<Invariant>{Invariant::PinchedFacePair}) << strict.summary();
+  const Violation* v = strict.find(Invariant::PinchedFacePair);
+  ASSERT_NE(v, nullptr);
+  EXPECT_EQ(v->count, 1u);
+  ASSERT_EQ(v->examples.size(), 1u);
+  EXPECT_EQ(v->examples.front(), "n26-n0-n1");
+  EXPECT_EQ(v->name(), "pinched_face_pair");
+}
+
+TEST(Validate, BoxesHaveNoPinchedFacePair) {
+  for (const auto& [a, b, c] : {std::tuple{1, 1, 1}, std::tuple{3, 2, 2}, std::tuple{4, 4, 4}}) {
+    const HexComplex box = test::box_hexes(a, b, c).complex;
+    const ValidationReport r = validate_hex_complex(box, nullptr, true);
+    EXPECT_TRUE(r.valid) << r.summary();
+  }
 }
 
 }  // namespace

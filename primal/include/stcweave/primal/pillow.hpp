@@ -79,6 +79,13 @@ struct PillowReport {
   std::string reason;
   /// Auto with `compare`: both complexes were positioned and compared (`choose_pillowed`).
   bool compared = false;
+  /// After the pillow (pipeline, `unpinch` in primal/src/position_pinch.hpp): pinched face
+  /// pairs found, 2-hex blocks pillowed to remove them (10 hexes and 12 nodes each, counted
+  /// here, not in `hexes_added`), and pairs left. All 0 when there was no pinched pair.
+  std::size_t pinched_pairs = 0;
+  std::size_t unpinch_blocks = 0;
+  std::size_t unpinch_hexes = 0;
+  std::size_t pinched_left = 0;
 };
 
 /// The fixed corners of `mesh` (hex corners whose four nodes are among the boundary nodes

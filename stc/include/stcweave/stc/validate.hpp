@@ -27,6 +27,11 @@ enum class Invariant {
   ExtraBoundaryQuad,     ///< every face used once is an expected boundary quad
   ReversedBoundaryQuad,  ///< expected quads appear with the same cyclic order
   EulerCharacteristic,   ///< χ(volume) = V − E + F − C equals χ(boundary) / 2
+  /// (only with `check_pinched_faces`) no two distinct faces (n, a, x, b), (n, a, y, b)
+  /// share the two edges n-a and n-b: at n both are tangent to the plane of those edges,
+  /// so some hex corner at n is flat whatever the node positions (a degenerate hex for any
+  /// solver). Combinatorially a hex complex still; geometrically not realisable.
+  PinchedFacePair,
 };
 
 /// The name of an invariant as reported (`"face_in_three_hexes"`, ...).
@@ -75,8 +80,12 @@ struct ValidationReport {
 /// other checks. Time: a sort of the faces and edges, then linear.
 /// \param expected_boundary quads over the complex's node ids; nullptr to skip the
 /// comparison.
+/// \param check_pinched_faces also require no pinched face pair (`PinchedFacePair`): what
+/// a mesh handed to a solver needs; off for the weave's own complex, which may hold pairs
+/// at boundary nodes that the pipeline's pillow and unpinch stages remove.
 [[nodiscard]] ValidationReport validate_hex_complex(const HexComplex& complex,
-                                                    const QuadSurface* expected_boundary = nullptr);
+                                                    const QuadSurface* expected_boundary = nullptr,
+                                                    bool check_pinched_faces = false);
 
 /// \throw InternalError naming the first violation of `report` (and how many there are)
 /// when it is not valid.
