@@ -361,32 +361,27 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
     into.direct_join_violation = report.direct_join_violation;
   };
   std::optional<std::pair<weave::WeaveResult, SelfCrossingReport>> best;
-  for (const auto& way : ways) {
-    SelfCrossingReport fresh = base;
-    keep_totals(fresh);
-    report = std::move(fresh);
-    std::optional<weave::WeaveResult> r = way();
-    if (!r) continue;
-    if (!best || r->complex.hexes.size() < best->first.complex.hexes.size())
-      best.emplace(std::move(*r), report);
-    if (!best_of) break;
-  }
-  if (!best && options.reliable_fallback && moves.simple && !caller_weave_options.selection &&
-      weave_options.rules == weave::RuleSet::Extended) {
-    weave_options.rules = weave::RuleSet::Reliable;
-    weave_options.selection = nullptr;
-    report.weave_failure += "; then with the reliable rules: ";
+  // Every way in turn (all of them with `best_of`), keeping the fewest hexes.
+  const auto run_ways = [&](bool reliable_fallback) {
     for (const auto& way : ways) {
       SelfCrossingReport fresh = base;
       keep_totals(fresh);
       report = std::move(fresh);
       std::optional<weave::WeaveResult> r = way();
       if (!r) continue;
-      report.reliable_fallback = true;
+      report.reliable_fallback = reliable_fallback;
       if (!best || r->complex.hexes.size() < best->first.complex.hexes.size())
         best.emplace(std::move(*r), report);
       if (!best_of) break;
     }
+  };
+  run_ways(false);
+  if (!best && options.reliable_fallback && moves.simple && !caller_weave_options.selection &&
+      weave_options.rules == weave::RuleSet::Extended) {
+    weave_options.rules = weave::RuleSet::Reliable;
+    weave_options.selection = nullptr;
+    report.weave_failure += "; then with the reliable rules: ";
+    run_ways(true);
   }
   if (best) {
     keep_totals(best->second);

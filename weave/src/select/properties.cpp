@@ -175,6 +175,29 @@ std::array<TraceCandidate, 2> weigh_within(const Front& front, const FaceTable& 
 
 namespace {
 
+/// The strip's own edges: sharp edges it crosses, and per side (0: entry + 3, 1: entry + 1)
+/// the sharp and the non-convex edges along it.
+struct StripEdges {
+  std::size_t crossed = 0;
+  std::array<std::size_t, 2> side_sharp{0, 0};
+  std::array<std::size_t, 2> nonconvex{0, 0};
+};
+
+StripEdges count_strip_edges(const FaceTable& table, const Strip& strip,
+                             const ExtendedParameters& par) {
+  StripEdges e;
+  for (const stc::StripStep& p : strip) {
+    if (table.angle_of(face_of(p), p.entry) <= par.little_sharp) ++e.crossed;
+    for (std::size_t d = 0; d < 2; ++d) {
+      const int side = d == 0 ? (p.entry + 3) % 4 : (p.entry + 1) % 4;
+      const double a = table.angle_of(face_of(p), side);
+      if (a <= par.sharp) ++e.side_sharp[d];
+      if (a > par.flat) ++e.nonconvex[d];
+    }
+  }
+  return e;
+}
+
 /// `extended_properties` with the front's neighbours and edge angles read from `table`.
 std::array<TraceCandidate, 2> extended_properties_in(const Front& front, const FaceTable& table,
                                                      const Strip& strip,
@@ -194,18 +217,10 @@ std::array<TraceCandidate, 2> extended_properties_in(const Front& front, const F
   std::array<std::vector<NodeId>, 2> side_nodes;  // strictly on each side, from its flood
   std::uint32_t last_seen = 0;                    // the stamp of side B's flood
   std::size_t on_strip = 0;
-  std::size_t crossed = 0;
-  std::array<std::size_t, 2> side_sharp{0, 0};
-  std::array<std::size_t, 2> nonconvex{0, 0};
-  for (const stc::StripStep& p : strip) {
-    if (table.angle_of(face_of(p), p.entry) <= par.little_sharp) ++crossed;
-    for (std::size_t d = 0; d < 2; ++d) {
-      const int side = d == 0 ? (p.entry + 3) % 4 : (p.entry + 1) % 4;
-      const double a = table.angle_of(face_of(p), side);
-      if (a <= par.sharp) ++side_sharp[d];
-      if (a > par.flat) ++nonconvex[d];
-    }
-  }
+  const StripEdges strip_edges = count_strip_edges(table, strip, par);
+  const std::size_t crossed = strip_edges.crossed;
+  const std::array<std::size_t, 2> side_sharp = strip_edges.side_sharp;
+  std::array<std::size_t, 2> nonconvex = strip_edges.nonconvex;
   for (int d = 0; d < 2; ++d) {
     const auto di = static_cast<std::size_t>(d);
     // Flood side d from its strip nodes through non-strip faces: faces on that side, their
@@ -456,18 +471,10 @@ std::optional<std::array<TraceCandidate, 2>> one_flood_properties(
   const auto on_strip_face = [&](FaceIndex f) {
     return faces.is(static_cast<std::size_t>(f), strip_stamp);
   };
-  std::size_t crossed = 0;
-  std::array<std::size_t, 2> side_sharp{0, 0};
-  std::array<std::size_t, 2> nonconvex{0, 0};
-  for (const stc::StripStep& p : strip) {
-    if (table.angle_of(face_of(p), p.entry) <= par.little_sharp) ++crossed;
-    for (std::size_t d = 0; d < 2; ++d) {
-      const int side = d == 0 ? (p.entry + 3) % 4 : (p.entry + 1) % 4;
-      const double a = table.angle_of(face_of(p), side);
-      if (a <= par.sharp) ++side_sharp[d];
-      if (a > par.flat) ++nonconvex[d];
-    }
-  }
+  const StripEdges strip_edges = count_strip_edges(table, strip, par);
+  const std::size_t crossed = strip_edges.crossed;
+  const std::array<std::size_t, 2> side_sharp = strip_edges.side_sharp;
+  std::array<std::size_t, 2> nonconvex = strip_edges.nonconvex;
   // Node stamps: strip corners of side A only, of side B only, of both; reached from A, B.
   const std::array<std::uint32_t, 2> corner{nodes.fresh(front.num_nodes()),
                                             nodes.fresh(front.num_nodes())};
