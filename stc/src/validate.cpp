@@ -158,6 +158,56 @@ std::string ValidationReport::summary() const {
   return out.str();
 }
 
+std::vector<PinchedFaces> pinched_faces(const HexComplex& complex) {
+  // Distinct faces (sorted node quadruples), each with its cycle.
+  struct Face {
+    std::array<std::int32_t, 4> key;
+    std::array<std::int32_t, 4> cycle;
+  };
+  std::vector<Face> faces;
+  faces.reserve(complex.hexes.size() * 6);
+  for (const Hex& h : complex.hexes) {
+    for (int f = 0; f < 6; ++f) {
+      const Quad q = hex_face(h, f);
+      Face face{};
+      for (std::size_t i = 0; i < 4; ++i) face.cycle[i] = q[i].value();
+      face.key = face.cycle;
+      std::sort(face.key.begin(), face.key.end());
+      faces.push_back(face);
+    }
+  }
+  std::sort(faces.begin(), faces.end(), [](const Face& a, const Face& b) { return a.key < b.key; });
+  faces.erase(std::unique(faces.begin(), faces.end(),
+                          [](const Face& a, const Face& b) { return a.key == b.key; }),
+              faces.end());
+  // Per face corner: (node, smaller neighbour, larger neighbour, face).
+  std::vector<std::array<std::int32_t, 4>> corners;
+  corners.reserve(faces.size() * 4);
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const auto& c = faces[f].cycle;
+    for (std::size_t i = 0; i < 4; ++i) {
+      const std::int32_t a = c[(i + 1) % 4];
+      const std::int32_t b = c[(i + 3) % 4];
+      corners.push_back({c[i], std::min(a, b), std::max(a, b), static_cast<std::int32_t>(f)});
+    }
+  }
+  std::sort(corners.begin(), corners.end());
+  std::vector<PinchedFaces> out;
+  for (std::size_t i = 0; i + 1 < corners.size(); ++i) {
+    const auto& x = corners[i];
+    const auto& y = corners[i + 1];
+    if (x[0] != y[0] || x[1] != y[1] || x[2] != y[2]) continue;
+    PinchedFaces p;
+    p.node = NodeId(x[0]);
+    p.a = NodeId(x[1]);
+    p.b = NodeId(x[2]);
+    p.first = faces[static_cast<std::size_t>(x[3])].cycle;
+    p.second = faces[static_cast<std::size_t>(y[3])].cycle;
+    out.push_back(p);
+  }
+  return out;
+}
+
 ValidationReport validate_hex_complex(const HexComplex& complex,
                                       const QuadSurface* expected_boundary,
                                       bool check_pinched_faces) {
@@ -464,27 +514,19 @@ ValidationReport validate_hex_complex(const HexComplex& complex,
     euler.flush(report);
   }
 
-  // 8. Pinched face pairs: two distinct faces with the same corner (node and its two face
-  // neighbours); reported as n-a-b, the node and the two shared neighbours.
+  // 8. Pinched face pairs (`pinched_faces`), over the hexes step 1 kept, reported as n-a-b:
+  // the node and the two shared neighbours.
   if (check_pinched_faces) {
     Collector pinched(Invariant::PinchedFacePair);
-    std::vector<std::array<std::int32_t, 3>> corners;
-    corners.reserve(4 * num_faces);
-    for (std::uint32_t f = 0; f < num_faces; ++f) {
-      const std::uint32_t slot = face_slots[face_begin[f]];
-      const Quad q = hex_face(complex.hexes[slot / 6], static_cast<int>(slot % 6));
-      for (std::size_t i = 0; i < 4; ++i) {
-        const std::int32_t x = q[(i + 1) % 4].value();
-        const std::int32_t y = q[(i + 3) % 4].value();
-        corners.push_back({q[i].value(), std::min(x, y), std::max(x, y)});
-      }
+    HexComplex kept;
+    const bool all_good = std::find(good.begin(), good.end(), false) == good.end();
+    if (!all_good) {
+      kept.num_nodes = complex.num_nodes;
+      for (std::size_t h = 0; h < num_hexes; ++h)
+        if (good[h]) kept.hexes.push_back(complex.hexes[h]);
     }
-    std::sort(corners.begin(), corners.end());
-    for (std::size_t i = 1; i < corners.size(); ++i) {
-      if (corners[i] != corners[i - 1]) continue;
-      pinched.add(NodeId(corners[i][0]).str() + "-" + NodeId(corners[i][1]).str() + "-" +
-                  NodeId(corners[i][2]).str());
-    }
+    for (const PinchedFaces& p : pinched_faces(all_good ? complex : kept))
+      pinched.add(p.node.str() + "-" + p.a.str() + "-" + p.b.str());
     pinched.flush(report);
   }
   return report;

@@ -3,6 +3,7 @@
 /// Validation of a hex complex against the invariants of DESIGN.md ("Invariants"): the
 /// check run on every weave result and by `--check`. Pure topology (no coordinates).
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -86,6 +87,22 @@ struct ValidationReport {
 [[nodiscard]] ValidationReport validate_hex_complex(const HexComplex& complex,
                                                     const QuadSurface* expected_boundary = nullptr,
                                                     bool check_pinched_faces = false);
+
+/// Two distinct faces (n, a, x, b) and (n, a, y, b) of a complex: they share the edges
+/// n-a and n-b. At n both are tangent to the plane of those two edges, so the hexes met
+/// going round the edge n-a from one face to the other on one side span a dihedral angle of
+/// 0 there: some corner at n is flat (det 0) whatever the positions. Topology, not positions.
+struct PinchedFaces {
+  NodeId node;
+  NodeId a;  ///< the smaller of the two shared neighbours
+  NodeId b;
+  std::array<std::int32_t, 4> first{};  ///< node cycles of the two faces
+  std::array<std::int32_t, 4> second{};
+};
+
+/// Every pinched pair of faces of `complex` (the `PinchedFacePair` invariant), sorted by
+/// (node, a, b); O(hexes log hexes).
+[[nodiscard]] std::vector<PinchedFaces> pinched_faces(const HexComplex& complex);
 
 /// \throw InternalError naming the first violation of `report` (and how many there are)
 /// when it is not valid.
