@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <set>
 
 #include "stcweave/stc/errors.hpp"
@@ -263,6 +264,77 @@ TEST(BlindChord, RefusesANodeOffTheShrinkingSide) {
   EXPECT_FALSE(r.applied);
   EXPECT_TRUE(has(r.why, "no strip face at it")) << r.why;
   EXPECT_TRUE(b.state.woven.hexes.empty());
+}
+
+/// The positions of the steps of `strip` that hold v at entry or entry + 3, in strip order.
+std::vector<std::uint32_t> steps_holding(const Front& front, const Strip& strip, NodeId v) {
+  std::vector<std::uint32_t> out;
+  for (std::size_t i = 0; i < strip.size(); ++i) {
+    const stc::Quad& n = front.face(face_of(strip[i])).nodes;
+    if (quad_at(n, strip[i].entry) == v || quad_at(n, strip[i].entry + 3) == v)
+      out.push_back(static_cast<std::uint32_t>(i));
+  }
+  return out;
+}
+
+TEST(BlindChord, GivenItsStepsBuildsTheHexTheScanBuilds) {
+  // Every node of every loop's strip of a 3 x 2 x 1 box, on the input front and after one
+  // cross, once with the strip scanned and once with the steps given (what shrink does): the
+  // same verdict, reason and hex.
+  const stc::QuadSurface surface = test::box_surface(3, 2, 1).surface;
+  std::size_t compared = 0, applied = 0, refused_on_side = 0;
+  for (const bool after_cross : {false, true}) {
+    const auto prepare = [after_cross](Bench& b) {
+      if (after_cross) ASSERT_TRUE(cross(b.state, b.ctx, node_of_valence(b.state.front, 3)));
+    };
+    Bench probe(surface);
+    prepare(probe);
+    for (const Strip& strip : front_loops(probe.state.front).strips) {
+      std::set<NodeId> nodes;
+      for (const stc::StripStep& p : strip)
+        for (const NodeId m : probe.state.front.face(face_of(p)).nodes) nodes.insert(m);
+      for (const NodeId v : nodes) {
+        Bench scan(surface), given(surface);
+        prepare(scan);
+        prepare(given);
+        const FaceSet fs = mark_strip_faces(scan.ctx.faces, scan.state.front, strip);
+        const RuleResult a = blind_chord(scan.state, scan.ctx, v, strip, fs);
+        const FaceSet fg = mark_strip_faces(given.ctx.faces, given.state.front, strip);
+        const std::vector<std::uint32_t> steps = steps_holding(given.state.front, strip, v);
+        const RuleResult b = blind_chord(given.state, given.ctx, v, strip, fg, steps);
+        EXPECT_EQ(a.applied, b.applied) << v.str();
+        EXPECT_EQ(a.why, b.why) << v.str();
+        EXPECT_EQ(scan.state.woven.hexes, given.state.woven.hexes) << v.str();
+        EXPECT_EQ(scan.state.front.num_faces(), given.state.front.num_faces()) << v.str();
+        ++compared;
+        applied += a.applied ? 1 : 0;
+        refused_on_side += !a.applied && !steps.empty() ? 1 : 0;
+      }
+    }
+  }
+  EXPECT_GT(applied, 0u) << "the comparison should include applied rules";
+  EXPECT_GT(refused_on_side, 0u) << "and rules refused at a node on the shrinking side";
+  EXPECT_LT(applied + refused_on_side, compared) << "and nodes off it";
+}
+
+TEST(BlindChord, AStepThatDoesNotHoldTheNodeIsAnInternalError) {
+  Bench b(test::box_surface(2, 1, 1).surface);
+  const auto [strip, v] = strip_with_high_valence_side_node(b.state.front);
+  ASSERT_TRUE(v.is_valid());
+  std::vector<std::uint32_t> wrong;
+  for (std::size_t i = 0; i < strip.size() && wrong.empty(); ++i) {
+    const stc::Quad& n = b.state.front.face(face_of(strip[i])).nodes;
+    if (quad_at(n, strip[i].entry) != v && quad_at(n, strip[i].entry + 3) != v)
+      wrong.push_back(static_cast<std::uint32_t>(i));
+  }
+  ASSERT_FALSE(wrong.empty());
+  const FaceSet strip_faces = mark_strip_faces(b.ctx.faces, b.state.front, strip);
+  EXPECT_THROW((void)blind_chord(b.state, b.ctx, v, strip, strip_faces, wrong), InternalError);
+  EXPECT_TRUE(b.state.woven.hexes.empty());
+  // no steps at all: refused, nothing built
+  const RuleResult r = blind_chord(b.state, b.ctx, v, strip, strip_faces, {});
+  EXPECT_FALSE(r.applied);
+  EXPECT_TRUE(has(r.why, "no strip face at it")) << r.why;
 }
 
 // ---------------------------------------------------------------------------------------

@@ -8,6 +8,10 @@
 /// the loop then never shrinks, or a later cross rebuilds the same hex; DESIGN.md.)
 
 #include <algorithm>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
 
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/weave/rules.hpp"
@@ -17,13 +21,28 @@ namespace stcweave::weave {
 RuleResult blind_chord(WeaveState& state, WeaveContext& ctx, NodeId v, const Strip& strip,
                        const FaceSet& strip_faces) {
   const Front& front = state.front;
+  std::vector<std::uint32_t> steps;
+  for (std::size_t i = 0; i < strip.size(); ++i) {
+    const stc::Quad& n = front.face(face_of(strip[i])).nodes;
+    if (quad_at(n, strip[i].entry) == v || quad_at(n, strip[i].entry + 3) == v)
+      steps.push_back(static_cast<std::uint32_t>(i));
+  }
+  return blind_chord(state, ctx, v, strip, strip_faces, steps);
+}
+
+RuleResult blind_chord(WeaveState& state, WeaveContext& ctx, NodeId v, const Strip& strip,
+                       const FaceSet& strip_faces, std::span<const std::uint32_t> steps) {
+  const Front& front = state.front;
   // The refusal of the last pair tried (its message is built once, at the end).
   enum class Refusal { NoPair, SharedEdges, SameHex } last = Refusal::NoPair;
   HexId same_hex;
-  for (const stc::StripStep& p : strip) {
+  for (const std::uint32_t step : steps) {
+    const stc::StripStep& p = strip[step];
     const FaceIndex f = face_of(p);
     const stc::Quad& n = front.face(f).nodes;
-    if (quad_at(n, p.entry) != v && quad_at(n, p.entry + 3) != v) continue;
+    if (quad_at(n, p.entry) != v && quad_at(n, p.entry + 3) != v)
+      throw InternalError("weave: blind chord at " + v.str() + ": strip step " +
+                          std::to_string(step) + " does not hold it on the shrinking side");
     const int side = (p.entry + 3) % 4;  // edge (n[i+3], n[i]) on the shrinking side
     const FaceSide g = front.across(f, side);
     if (g.face == kNoFace) throw InternalError("weave: open front edge at " + v.str());

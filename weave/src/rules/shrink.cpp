@@ -10,6 +10,8 @@
 /// weave"). When every node is still blocked the shrink fails, naming each node and why.
 
 #include <algorithm>
+#include <cstdint>
+#include <span>
 
 #include "stcweave/weave/rules.hpp"
 
@@ -20,6 +22,11 @@ std::optional<std::string> shrink(WeaveState& state, WeaveContext& ctx, const St
   const Front& front = state.front;
   std::vector<Transversal> edges = transversals(front, initial, side);
   std::vector<NodeId> order;
+  // The strip positions holding each side node (entry or entry + 3), grouped per node in
+  // strip order: node m's are steps[start[slot[m]] .. start[slot[m] + 1]), slot[m] being m's
+  // index in `order` before it is sorted. Built once per strip, so that a blind chord tried at
+  // every side node does not scan the whole strip for each.
+  std::vector<std::uint32_t> slot, start, steps, cursor;
   for (;;) {
     seam_fixpoint(state, ctx);
     const Strip strip = retrace(front, edges);
@@ -27,17 +34,35 @@ std::optional<std::string> shrink(WeaveState& state, WeaveContext& ctx, const St
     // Re-traced from a side-d node's edge, the strip has the shrinking side as its side A.
     edges = transversals(front, strip, stc::LoopSide::Left);
     const FaceSet strip_faces = mark_strip_faces(ctx.faces, front, strip);
-    // side nodes in loop order, each once
+    // side nodes in loop order, each once, and the strip steps that hold each
     order.clear();
+    start.assign(1, 0);
+    slot.resize(front.num_nodes());
     const std::uint32_t seen = ctx.nodes.fresh(front.num_nodes());
     for (const stc::StripStep& p : strip) {
       const stc::Quad& n = front.face(face_of(p)).nodes;
       for (NodeId m : {quad_at(n, p.entry), quad_at(n, p.entry + 3)}) {
-        if (ctx.nodes.is(m.index(), seen)) continue;
-        ctx.nodes.set(m.index(), seen);
-        order.push_back(m);
+        if (!ctx.nodes.is(m.index(), seen)) {
+          ctx.nodes.set(m.index(), seen);
+          slot[m.index()] = static_cast<std::uint32_t>(order.size());
+          order.push_back(m);
+          start.push_back(0);
+        }
+        ++start[slot[m.index()] + 1];
       }
     }
+    for (std::size_t k = 1; k < start.size(); ++k) start[k] += start[k - 1];
+    cursor.assign(start.begin(), start.end() - 1);
+    steps.resize(start.back());
+    for (std::size_t i = 0; i < strip.size(); ++i) {
+      const stc::Quad& n = front.face(face_of(strip[i])).nodes;
+      for (NodeId m : {quad_at(n, strip[i].entry), quad_at(n, strip[i].entry + 3)})
+        steps[cursor[slot[m.index()]]++] = static_cast<std::uint32_t>(i);
+    }
+    const auto steps_of = [&](NodeId m) {
+      const std::uint32_t k = slot[m.index()];
+      return std::span<const std::uint32_t>(steps.data() + start[k], start[k + 1] - start[k]);
+    };
     // The fewest-sided node first (ties: loop order). Usually its rule applies, so find it
     // by a scan and sort the rest only when it is blocked.
     const auto by_valence = [&front](NodeId p, NodeId q) {
@@ -69,7 +94,7 @@ std::optional<std::string> shrink(WeaveState& state, WeaveContext& ctx, const St
         applied = r.applied;
         if (!applied) why = "cross refused: " + r.why;
       } else {
-        const RuleResult r = blind_chord(state, ctx, v, strip, strip_faces);
+        const RuleResult r = blind_chord(state, ctx, v, strip, strip_faces, steps_of(v));
         applied = r.applied;
         if (!applied) why = "blind chord refused: " + r.why;
       }

@@ -16,7 +16,9 @@
 /// | loops of the front | sect. 2.1 | rules/front_loops.cpp |
 
 #include <array>
+#include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -98,6 +100,13 @@ RuleResult cross(WeaveState& state, WeaveContext& ctx, NodeId v);
 /// \cite seed sect. 2.2 (Fig. 2, Fig. 3).
 RuleResult blind_chord(WeaveState& state, WeaveContext& ctx, NodeId v, const Strip& strip,
                        const FaceSet& strip_faces);
+
+/// The same rule given the positions in `strip` of the steps that hold v on the shrinking
+/// side (entry or entry + 3 is v), in strip order: it tries only those steps, so the result
+/// is that of the overload above (which scans the whole strip for them) when `steps` lists
+/// exactly those positions. `shrink` indexes them once per strip instead of once per node.
+RuleResult blind_chord(WeaveState& state, WeaveContext& ctx, NodeId v, const Strip& strip,
+                       const FaceSet& strip_faces, std::span<const std::uint32_t> steps);
 
 /// Shrinks the loop `strip` to side `side` (rules/shrink.cpp): seams to a fixpoint, re-trace,
 /// then the side node with the fewest front faces is collapsed (seam, cross or blind chord),
