@@ -100,6 +100,36 @@ TEST(GoodStart, AValidGoodStartIsKeptWithoutUntanglingRounds) {
   EXPECT_NEAR(r.min_scaled_jacobian_after, 1.0, 1e-12);
 }
 
+TEST(GoodStart, AValidStartWithOneBadSpotIsKeptAndItsWorstHexRaised) {
+  // An 8x8x8 grid with one interior node pushed along the diagonal: valid, mean near 1, a
+  // few hexes around the node well below 0.5. By default no untangling round runs and the
+  // shape phase raises the worst hex; asking for a min of 0.5 sends it through the rounds.
+  HexMesh mesh = test::box_hexes(8, 8, 8);
+  PositionOptions options;
+  options.num_fixed = test::boundary_first(mesh);
+  const auto v = static_cast<Eigen::Index>(options.num_fixed);
+  const double cell = (mesh.points.colwise().maxCoeff() - mesh.points.colwise().minCoeff())(0) / 8;
+  mesh.points.row(v) += Eigen::RowVector3d(0.3, 0.3, 0.3) * cell;
+  const QualitySummary start = summarize_quality(mesh, 0);
+  ASSERT_EQ(start.inverted, 0u) << "the test needs a valid start (cell " << cell << ", min "
+                                << start.min_scaled_jacobian << ")";
+  ASSERT_LT(start.min_scaled_jacobian, 0.5);
+  ASSERT_GE(start.mean_scaled_jacobian, options.good_start_mean);
+  HexMesh strict = mesh;
+  const PositionReport r = position_nodes(mesh, options);
+  EXPECT_TRUE(r.good_start) << r.stop;
+  EXPECT_EQ(r.iterations, 0u);
+  EXPECT_TRUE(r.shape.ran);
+  EXPECT_GT(r.min_scaled_jacobian_after, start.min_scaled_jacobian + 0.1);
+  EXPECT_EQ(r.inverted_after, 0u);
+
+  PositionOptions half = options;
+  half.good_start = 0.5;
+  const PositionReport h = position_nodes(strict, half);
+  EXPECT_FALSE(h.good_start);
+  EXPECT_GT(h.iterations, 0u);
+}
+
 TEST(GoodStart, ADistortedStartIsStillOptimised) {
   std::size_t num_fixed = 0;
   HexMesh mesh = scrambled_box(0.45, &num_fixed);

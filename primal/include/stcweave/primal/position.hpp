@@ -91,11 +91,11 @@ struct PositionOptions {
   int threads = 0;
   /// Early stop: a start with no inverted corner or hex, a minimum scaled Jacobian of at
   /// least this and a mean of at least `good_start_mean` is kept as it is (no untangling
-  /// rounds; the shape phase still runs). 0.5 is the lower end of Verdict's acceptable range;
-  /// measured on the transfinite cylinders, the untangling energy only lowers such a start's
-  /// min scaled Jacobian (docs/geometry.md).
-  /// Above 1: never stop early. The start must also have a mean of `good_start_mean`.
-  double good_start = 0.5;
+  /// rounds; the shape phase, whose barrier pass works on the worst hexes, still runs). The
+  /// default 0 asks only for validity and the mean: measured on the transfinite cylinders,
+  /// the untangling energy evens out the average and barely moves the worst hex, which the
+  /// shape phase raises anyway (docs/geometry.md). Above 1: never stop early.
+  double good_start = 0.0;
   /// Early stop: the mean scaled Jacobian a good start needs as well (0.95: within a few
   /// percent of the ideal on average, where the energy has little left to even out).
   double good_start_mean = 0.95;
