@@ -34,6 +34,7 @@
 #include "driver.hpp"
 #include "recovery.hpp"
 #include "select/bounded.hpp"
+#include "select/candidates.hpp"
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/weave/front_pillow.hpp"
 #include "stcweave/weave/kernel.hpp"
@@ -181,8 +182,10 @@ WeaveResult assemble(WeaveState&& state) {
 using BlockedHook = std::function<bool(WeaveState&, WeaveContext&)>;
 
 /// The loop of Fig. 15 on `state` until the front is empty (nothing returned) or every
-/// (loop, side) is blocked (why, returned). `bounded`: the reliable selection may use branch
-/// and bound (nothing reads the other candidates). `on_blocked`: as in `run_weave`.
+/// (loop, side) is blocked (why, returned). `bounded`: nothing reads the candidates after the
+/// first, so the reliable selection may use branch and bound (select/bounded.hpp) and a
+/// geometric one computes side properties only where its filters read them
+/// (select/candidates.hpp). `on_blocked`: as in `run_weave`.
 std::optional<std::string> weave_front(WeaveState& state, WeaveContext& ctx,
                                        const Selection& selection, bool bounded,
                                        const BlockedHook& on_blocked) {
@@ -203,20 +206,33 @@ std::optional<std::string> weave_front(WeaveState& state, WeaveContext& ctx,
       return loop_candidates(state.front, loops, components, selection.geometric, par, ctx.nodes,
                              ctx.faces, ctx.faces2);
     };
-    // Branch and bound (select/bounded.hpp) when only the first candidate is read.
-    std::vector<TraceCandidate> candidates =
-        bounded ? loop_candidates_bounded(state.front, loops, components, ctx.nodes, ctx.faces,
-                                          best_weight)
-                : all_candidates();
+    // When only the first candidate is read: branch and bound (select/bounded.hpp), or the
+    // side properties only of the candidates a filter reads them of (select/candidates.hpp).
+    std::optional<CandidateSet> lazy;
+    std::vector<TraceCandidate> candidates;
+    if (bounded && selection.geometric) {
+      lazy.emplace(state.front, loops, components, par, ctx.nodes, ctx.faces, ctx.faces2,
+                   options.check);
+      if (extended && par.parallel_merging) {
+        for (std::size_t i = 0; i + 1 < lazy->all().size(); i += 2)
+          if (may_merge_in_parallel(lazy->all()[i], lazy->all()[i + 1]))
+            lazy->complete(lazy->all()[i].loop);
+      }
+    } else if (bounded) {
+      candidates = loop_candidates_bounded(state.front, loops, components, ctx.nodes, ctx.faces,
+                                           best_weight);
+    } else {
+      candidates = all_candidates();
+    }
 
     // "Apply the parallel merging filter": it closes a layer by itself and starts again.
     if (extended && par.parallel_merging &&
-        apply_parallel_merging(state, ctx, loops, candidates, components))
+        apply_parallel_merging(state, ctx, loops, lazy ? lazy->all() : candidates, components))
       continue;
 
     // The high-level filters rank the candidates (parallel crossing, non-convex, depth,
     // first and second convex, topological; or the reliable weight).
-    Ranking ranking = rank(selection, std::move(candidates));
+    Ranking ranking = lazy ? rank_first(selection, *lazy) : rank(selection, std::move(candidates));
     ++state.stats.selections;
     const auto exact = [&] { return rank(selection, all_candidates()); };
     if (bounded && options.check) check_bounded(ranking, exact());
@@ -264,8 +280,11 @@ WeaveResult run_weave(WeaveState state, const WeaveOptions& options, std::size_t
                                                     : &observers;
   WeaveContext ctx(options, observer, max_rules);
   const Selection selection = selection_for(options);
+  // Nothing reads the candidates after the first one (select/bounded.hpp, candidates.hpp):
+  // the built-in reliable selection or any geometric one, with no observer that reads them.
   const bool bounded =
-      options.rules != RuleSet::Extended && !options.selection && observer == nullptr;
+      (observer == nullptr || !observer->reads_every_candidate()) &&
+      (selection.geometric || (options.rules != RuleSet::Extended && !options.selection));
 
   if (prepare) prepare(state, ctx);  // e.g. hexes attached before the weave (attached.cpp)
 

@@ -150,15 +150,18 @@ RuleResult parallel_merging(WeaveState& state, WeaveContext& ctx, const Strip& s
   return RuleResult::done();
 }
 
+bool may_merge_in_parallel(const TraceCandidate& a, const TraceCandidate& b) {
+  return !a.self_intersecting && a.length >= 3 && a.side_sharp == a.length &&
+         b.side_sharp == b.length;
+}
+
 bool apply_parallel_merging(WeaveState& state, WeaveContext& ctx, const FrontLoops& loops,
                             const std::vector<TraceCandidate>& candidates,
                             const FrontComponents& components) {
   for (std::size_t i = 0; i + 1 < candidates.size(); i += 2) {
     const TraceCandidate& a = candidates[i];
     const TraceCandidate& b = candidates[i + 1];
-    if (a.self_intersecting || a.length < 3 || a.side_sharp != a.length ||
-        b.side_sharp != b.length || a.faces_collapsed != b.faces_collapsed)
-      continue;
+    if (!may_merge_in_parallel(a, b) || a.faces_collapsed != b.faces_collapsed) continue;
     const Strip& strip = loops.strips[static_cast<std::size_t>(a.loop)];
     const std::size_t before = ctx.rules_applied;
     if (ctx.observer != nullptr) {

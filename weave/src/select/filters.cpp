@@ -5,16 +5,24 @@
 #include <array>
 #include <cstdint>
 
+#include "candidates.hpp"
 #include "stcweave/weave/second_convex_threshold.hpp"
 #include "stcweave/weave/select.hpp"
 
 namespace stcweave::weave {
+
+namespace {
+unsigned reads_nothing(const TraceCandidate& /*c*/) {
+  return 0U;
+}
+}  // namespace
 
 Filter parallel_crossing_filter() {
   Filter f;
   f.name = "parallel_crossing";
   f.kind = Filter::Kind::Decide;
   f.keep = [](const TraceCandidate& c) { return c.parallel_to >= 0; };
+  f.reads = reads_nothing;
   f.reason = [](const std::vector<TraceCandidate>& kept) {
     return "parallel crossing: runs along loop " + std::to_string(kept.front().parallel_to) +
            " across sharp convex edges; fewest faces collapsed";
@@ -26,6 +34,7 @@ Filter nonconvex_filter() {
   Filter f;
   f.name = "nonconvex";
   f.keep = [](const TraceCandidate& c) { return c.nonconvex_on_side == 0; };
+  f.reads = [](const TraceCandidate& /*c*/) { return side_property::kNonconvex; };
   f.may_relax = true;  // the seed stops here ("not supported"); we go on
   return f;
 }
@@ -35,6 +44,7 @@ Filter depth_filter() {
   f.name = "depth";
   f.kind = Filter::Kind::Least;
   f.cost = [](const TraceCandidate& c) { return static_cast<double>(c.depth); };
+  f.reads = [](const TraceCandidate& /*c*/) { return side_property::kDepth; };
   return f;
 }
 
@@ -42,6 +52,7 @@ Filter first_convex_filter() {
   Filter f;
   f.name = "first_convex";
   f.keep = [](const TraceCandidate& c) { return c.crossed_sharp > 0; };
+  f.reads = reads_nothing;
   f.may_relax = true;
   return f;
 }
@@ -55,6 +66,7 @@ Filter second_convex_filter() {
     return -(static_cast<double>(c.side_sharp) /
              static_cast<double>(std::max<std::size_t>(1, c.length)));
   };
+  f.reads = reads_nothing;
   return f;
 }
 
@@ -71,6 +83,12 @@ Filter second_convex_filter(double min_weight, bool smaller_side) {
   f.cost_with_other = [min_weight, smaller_side](const TraceCandidate& c,
                                                  const TraceCandidate* other) {
     return -side_elimination_weight(c, other, min_weight, smaller_side);
+  };
+  // The faces of both sides matter only to a weight that is not 0 anyway.
+  f.reads = [min_weight, smaller_side](const TraceCandidate& c) {
+    if (!smaller_side) return 0U;
+    return side_elimination_weight(c, nullptr, min_weight, false) > 0.0 ? side_property::kFaces
+                                                                        : 0U;
   };
   return f;
 }
@@ -113,14 +131,31 @@ Selection selection_for(const WeaveOptions& options) {
                                             : reliable_selection();
 }
 
-Ranking rank(const Selection& selection, std::vector<TraceCandidate> all) {
-  Ranking out;
-  if (selection.order) std::stable_sort(all.begin(), all.end(), selection.order);
+namespace {
+
+/// What the filters of a selection leave: indices into the candidates, in `selection.order`.
+struct Filtered {
+  std::vector<std::size_t> set;
+  std::vector<std::string> filters;
+  std::string reason;
+  std::string decided_by;
+};
+
+/// The filters of `selection` on `all` (enumeration order), then the kept set ordered.
+/// `ready(set, filter)` is called before `filter` reads the candidates of `set` and, with a
+/// null filter, before the set left is ordered (it may fill in their side properties).
+Filtered filter_candidates(
+    const Selection& selection, std::vector<TraceCandidate>& all,
+    const std::function<void(const std::vector<std::size_t>&, const Filter*)>& ready) {
+  Filtered out;
   // Loops that cross themselves go last (unless there is nothing else).
-  std::vector<TraceCandidate> set;
-  for (const auto& c : all)
-    if (!c.self_intersecting) set.push_back(c);
-  if (set.empty()) set = all;
+  std::vector<std::size_t> set;
+  for (std::size_t i = 0; i < all.size(); ++i)
+    if (!all[i].self_intersecting) set.push_back(i);
+  if (set.empty()) {
+    set.resize(all.size());
+    for (std::size_t i = 0; i < all.size(); ++i) set[i] = i;
+  }
   // The other side of each candidate's loop, looked up in every candidate (an earlier filter
   // may have dropped it from `set`): index by loop, then side.
   std::vector<std::array<std::int32_t, 2>> by_loop;
@@ -140,34 +175,34 @@ Ranking rank(const Selection& selection, std::vector<TraceCandidate> all) {
   const auto note = [&](const std::string& entry) {
     if (selection.list_filters) out.filters.push_back(entry);
   };
-  bool decided = false;
+  const Filter* decider = nullptr;
   for (const Filter& filter : selection.filters) {
+    if (ready) ready(set, &filter);
     const std::size_t before = set.size();
-    std::vector<TraceCandidate> kept;
+    std::vector<std::size_t> kept;
     if (filter.kind == Filter::Kind::Least) {
       const auto cost = [&](const TraceCandidate& c) {
         return filter.cost_with_other ? filter.cost_with_other(c, other_side(c)) : filter.cost(c);
       };
       double least = 0.0;
       bool first = true;
-      for (const auto& c : set) {
-        const double x = cost(c);
+      for (const std::size_t i : set) {
+        const double x = cost(all[i]);
         if (first || x < least) least = x;
         first = false;
       }
-      for (const auto& c : set)
-        if (cost(c) <= least + filter.slack) kept.push_back(c);
+      for (const std::size_t i : set)
+        if (cost(all[i]) <= least + filter.slack) kept.push_back(i);
     } else {
-      for (const auto& c : set)
-        if (filter.keep(c)) kept.push_back(c);
+      for (const std::size_t i : set)
+        if (filter.keep(all[i])) kept.push_back(i);
     }
     if (filter.kind == Filter::Kind::Decide) {
       note(filter.name + ":" + std::to_string(kept.size()));
       if (!kept.empty()) {
         set = std::move(kept);
-        out.reason = filter.reason ? filter.reason(set) : filter.name;
         out.decided_by = filter.name;
-        decided = true;
+        decider = &filter;
         break;
       }
       continue;
@@ -180,7 +215,21 @@ Ranking rank(const Selection& selection, std::vector<TraceCandidate> all) {
     note(filter.name + ":" + std::to_string(before) + "->" + std::to_string(set.size()));
     if (set.size() == 1 && out.decided_by.empty()) out.decided_by = filter.name;
   }
-  if (!decided) {
+  if (ready) ready(set, nullptr);
+  if (selection.order) {
+    std::stable_sort(set.begin(), set.end(),
+                     [&](std::size_t p, std::size_t q) { return selection.order(all[p], all[q]); });
+  }
+  if (decider != nullptr) {
+    if (decider->reason) {
+      std::vector<TraceCandidate> kept;
+      kept.reserve(set.size());
+      for (const std::size_t i : set) kept.push_back(all[i]);
+      out.reason = decider->reason(kept);
+    } else {
+      out.reason = decider->name;
+    }
+  } else {
     note(selection.last + ":" + std::to_string(set.size()));
     if (out.decided_by.empty()) out.decided_by = selection.last;
     if (selection.list_filters) {
@@ -191,14 +240,56 @@ Ranking rank(const Selection& selection, std::vector<TraceCandidate> all) {
       out.reason = selection.last_reason;
     }
   }
-  // The chosen set first (already in order), then every other candidate.
-  out.order = set;
-  for (const auto& c : all) {
-    const bool in = std::any_of(set.begin(), set.end(), [&](const TraceCandidate& x) {
-      return x.loop == c.loop && x.side == c.side;
-    });
-    if (!in) out.order.push_back(c);
+  out.set = std::move(set);
+  return out;
+}
+
+}  // namespace
+
+Ranking rank(const Selection& selection, std::vector<TraceCandidate> all) {
+  Filtered f = filter_candidates(selection, all, nullptr);
+  Ranking out;
+  out.filters = std::move(f.filters);
+  out.reason = std::move(f.reason);
+  out.decided_by = std::move(f.decided_by);
+  // The chosen set first (in order), then every other candidate in order.
+  std::vector<char> in(all.size(), 0);
+  for (const std::size_t i : f.set) in[i] = 1;
+  std::vector<std::size_t> rest;
+  for (std::size_t i = 0; i < all.size(); ++i)
+    if (in[i] == 0) rest.push_back(i);
+  if (selection.order) {
+    std::stable_sort(rest.begin(), rest.end(),
+                     [&](std::size_t p, std::size_t q) { return selection.order(all[p], all[q]); });
   }
+  out.order.reserve(all.size());
+  for (const std::size_t i : f.set) out.order.push_back(all[i]);
+  for (const std::size_t i : rest) out.order.push_back(all[i]);
+  return out;
+}
+
+Ranking rank_first(const Selection& selection, CandidateSet& candidates) {
+  std::vector<TraceCandidate>& all = candidates.all();
+  const auto ready = [&](const std::vector<std::size_t>& set, const Filter* filter) {
+    for (const std::size_t i : set) {
+      const TraceCandidate& c = all[i];
+      const unsigned reads = filter == nullptr ? side_property::kAll
+                             : filter->reads   ? filter->reads(c)
+                                               : side_property::kAll;
+      if ((reads & ~candidates.known(c.loop)) != 0U) candidates.complete(c.loop);
+    }
+  };
+  Filtered f = filter_candidates(selection, all, ready);
+  Ranking out;
+  out.filters = std::move(f.filters);
+  out.reason = std::move(f.reason);
+  out.decided_by = std::move(f.decided_by);
+  if (f.set.empty()) return out;
+  const std::size_t first = f.set.front();
+  out.order.reserve(all.size());
+  out.order.push_back(all[first]);
+  for (std::size_t i = 0; i < all.size(); ++i)
+    if (i != first) out.order.push_back(all[i]);
   return out;
 }
 

@@ -14,8 +14,10 @@
 #include <utility>
 
 #include "bounded.hpp"
+#include "candidates.hpp"
 #include "face_table.hpp"
 #include "one_flood.hpp"
+#include "stcweave/stc/errors.hpp"
 #include "stcweave/weave/select.hpp"
 
 namespace stcweave::weave {
@@ -689,43 +691,135 @@ std::int32_t parallel_loop(const Front& front, const Strip& strip, stc::LoopSide
   return parallel_loop_in(face_table(front), strip, side, loops, parameters);
 }
 
+namespace {
+
+/// The sides one flood found, kept between this thread's selections: a hint only, every kept
+/// side is checked against the front (SideCache::begin), so it never changes a result.
+thread_local SideCache side_cache;
+
+/// True when some face side of a component has an edge angle above `flat` (`table` with
+/// angles), per component: where none has, every side of every loop there has no non-convex
+/// edge.
+std::vector<char> components_with_nonconvex(const Front& front, const FaceTable& table,
+                                            const FrontComponents& components, double flat) {
+  std::vector<char> out(components.size.size(), 0);
+  for (std::size_t i = 0; i < front.face_capacity(); ++i) {
+    const auto f = static_cast<FaceIndex>(i);
+    if (!front.is_alive(f)) continue;
+    for (int k = 0; k < 4; ++k) {
+      if (table.angle_of(f, k) > flat) {
+        out[components.component_of[table.nodes_of(f)[0].index()]] = 1;
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+CandidateSet::CandidateSet(const Front& front, const FrontLoops& loops,
+                           const FrontComponents& components, const ExtendedParameters& parameters,
+                           Marks& nodes, Marks& faces, Marks& faces2, bool check)
+    : front_(front),
+      loops_(loops),
+      components_(components),
+      parameters_(parameters),
+      nodes_(nodes),
+      faces_(faces),
+      faces2_(faces2),
+      check_(check),
+      table_(face_table(front, true)),
+      totals_(component_totals(front, table_, components, parameters.flat)) {
+  side_cache.begin(front, table_);
+  const std::vector<char> nonconvex =
+      components_with_nonconvex(front, table_, components, parameters.flat);
+  const std::size_t n = loops.strips.size();
+  all_.resize(2 * n);
+  known_.assign(n, 0U);
+  for (std::size_t l = 0; l < n; ++l) {
+    const Strip& strip = loops.strips[l];
+    // A loop crosses itself where it passes a face twice (as `weigh_within` finds it).
+    const std::uint32_t stamp = faces.fresh(front.face_capacity());
+    bool self_intersecting = false;
+    for (const stc::StripStep& p : strip) {
+      const auto f = static_cast<std::size_t>(face_of(p));
+      if (faces.is(f, stamp)) self_intersecting = true;
+      faces.set(f, stamp);
+    }
+    const StripEdges edges = count_strip_edges(table_, strip, parameters);
+    const std::size_t comp =
+        components.component_of[front.face(face_of(strip.front())).nodes[0].index()];
+    if (nonconvex[comp] == 0) known_[l] = side_property::kNonconvex;
+    for (std::size_t d = 0; d < 2; ++d) {
+      TraceCandidate& c = all_[2 * l + d];
+      c.loop = static_cast<std::int32_t>(l);
+      c.side = static_cast<int>(d);
+      c.length = strip.size();
+      c.self_intersecting = self_intersecting;
+      c.crossed_sharp = edges.crossed;
+      c.side_sharp = edges.side_sharp[d];
+      if (parameters.parallel_crossing && !self_intersecting) {
+        c.parallel_to =
+            parallel_loop_in(table_, strip, static_cast<stc::LoopSide>(d), loops, parameters);
+      }
+    }
+  }
+}
+
+void CandidateSet::complete(std::int32_t loop) {
+  const auto l = static_cast<std::size_t>(loop);
+  if (known_[l] == side_property::kAll) return;
+  const Strip& strip = loops_.strips[l];
+  std::optional<std::array<TraceCandidate, 2>> one =
+      one_flood_properties(front_, table_, strip, components_, totals_, parameters_, nodes_, faces_,
+                           faces2_, &side_cache);
+  const std::array<TraceCandidate, 2> pair =
+      one ? *one
+          : extended_properties_in(front_, table_, strip, components_, parameters_, nodes_, faces_,
+                                   faces2_);
+  for (std::size_t d = 0; d < 2; ++d) {
+    TraceCandidate c = pair[d];
+    TraceCandidate& slot = all_[2 * l + d];
+    c.loop = loop;
+    if (parameters_.parallel_crossing && !c.self_intersecting) c.parallel_to = slot.parallel_to;
+    if (check_ && (c.side != slot.side || c.length != slot.length ||
+                   c.self_intersecting != slot.self_intersecting ||
+                   c.crossed_sharp != slot.crossed_sharp || c.side_sharp != slot.side_sharp ||
+                   ((known_[l] & side_property::kNonconvex) != 0U &&
+                    c.nonconvex_on_side != slot.nonconvex_on_side))) {
+      throw InternalError("weave: loop " + std::to_string(loop) + " side " + "AB"[d] +
+                          ": its strip properties differ from those of its floods");
+    }
+    slot = c;
+  }
+  known_[l] = side_property::kAll;
+}
+
+void CandidateSet::complete_all() {
+  for (std::size_t l = 0; l < known_.size(); ++l) complete(static_cast<std::int32_t>(l));
+}
+
 std::vector<TraceCandidate> loop_candidates(const Front& front, const FrontLoops& loops,
                                             const FrontComponents& components, bool geometric,
                                             const ExtendedParameters& parameters, Marks& nodes,
                                             Marks& faces, Marks& faces2) {
+  if (geometric) {
+    CandidateSet set(front, loops, components, parameters, nodes, faces, faces2);
+    set.complete_all();
+    side_cache.end();
+    return std::move(set.all());
+  }
   std::vector<TraceCandidate> out;
   out.reserve(loops.strips.size() * 2);
-  const FaceTable table = face_table(front, geometric);
-  ComponentTotals totals;
-  // The sides one flood found, kept between this thread's selections: a hint only, every
-  // kept side is checked against the front (SideCache::begin), so it never changes a result.
-  thread_local SideCache cache;
-  if (geometric) {
-    totals = component_totals(front, table, components, parameters.flat);
-    cache.begin(front, table);
-  }
+  const FaceTable table = face_table(front, false);
   for (std::size_t l = 0; l < loops.strips.size(); ++l) {
-    const Strip& strip = loops.strips[l];
-    std::optional<std::array<TraceCandidate, 2>> one;
-    if (geometric) {
-      one = one_flood_properties(front, table, strip, components, totals, parameters, nodes, faces,
-                                 faces2, &cache);
-    }
-    const auto pair = one         ? *one
-                      : geometric ? extended_properties_in(front, table, strip, components,
-                                                           parameters, nodes, faces, faces2)
-                                  : weigh_within(front, table, strip, components, nodes, faces,
-                                                 {kNoLimit, kNoLimit}, nullptr);
-    for (TraceCandidate c : pair) {
+    for (TraceCandidate c : weigh_within(front, table, loops.strips[l], components, nodes, faces,
+                                         {kNoLimit, kNoLimit}, nullptr)) {
       c.loop = static_cast<std::int32_t>(l);
-      if (geometric && parameters.parallel_crossing && !c.self_intersecting) {
-        c.parallel_to =
-            parallel_loop_in(table, strip, static_cast<stc::LoopSide>(c.side), loops, parameters);
-      }
       out.push_back(c);
     }
   }
-  if (geometric) cache.end();
   return out;
 }
 

@@ -183,6 +183,9 @@ class WeaveObserver {
   /// A shrink (or a parallel merging) ended blocked, or was refused.
   virtual void on_shrink_failed(std::size_t step, std::int32_t shrink,
                                 const std::string& reason) = 0;
+  /// False when `on_selection` reads only `candidates[chosen]`: the driver may then leave
+  /// the other candidates partly computed (their order and properties unspecified).
+  [[nodiscard]] virtual bool reads_every_candidate() const { return true; }
 };
 
 /// What a rule reads but never undoes.

@@ -132,6 +132,11 @@ struct FrontComponents {
 RuleResult parallel_merging(WeaveState& state, WeaveContext& ctx, const Strip& strip,
                             const FrontComponents& components);
 
+/// What parallel merging asks of a loop's two candidates (side A, side B) before their face
+/// counts: a loop that does not cross itself, at least 3 long, with sharp convex edges all
+/// along both sides. Read off the strip alone.
+[[nodiscard]] bool may_merge_in_parallel(const TraceCandidate& a, const TraceCandidate& b);
+
 /// The parallel merging step of Fig. 15: tries `parallel_merging` on every loop whose
 /// candidates qualify (sharp convex side edges on both sides, as many faces either side),
 /// tracing each attempt; true when one was applied (its seams then run).

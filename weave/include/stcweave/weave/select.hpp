@@ -21,6 +21,18 @@
 
 namespace stcweave::weave {
 
+/// The candidate properties that cost a flood of the candidate's side of the front (all the
+/// others are read off its strip): what a filter may declare it reads (`Filter::reads`), so
+/// that the driver computes them only for the candidates such a filter sees
+/// (select/candidates.hpp).
+namespace side_property {
+inline constexpr unsigned kFaces = 1U;      ///< faces_collapsed
+inline constexpr unsigned kDepth = 2U;      ///< depth
+inline constexpr unsigned kNonconvex = 4U;  ///< nonconvex_on_side
+inline constexpr unsigned kWeight = 8U;     ///< strictly_on_side, on_strip, weight
+inline constexpr unsigned kAll = kFaces | kDepth | kNonconvex | kWeight;
+}  // namespace side_property
+
 /// One filter of Fig. 15.
 struct Filter {
   enum class Kind {
@@ -44,6 +56,10 @@ struct Filter {
   bool may_relax = false;
   /// Decide: the reason traced, given the candidates it kept.
   std::function<std::string(const std::vector<TraceCandidate>&)> reason;
+  /// The `side_property` bits its verdict on a candidate may read, of the candidate or of the
+  /// other side of its loop (`cost_with_other`). Unset: all of them. A filter that reads a
+  /// property it does not declare may see it unset (zero) in a weave without an observer.
+  std::function<unsigned(const TraceCandidate&)> reads;
 };
 
 /// A rule set's loop selection: an order, then filters.
@@ -105,6 +121,9 @@ struct Ranking {
   std::string decided_by;  ///< the filter after which one candidate was left, or `last`
 };
 /// Ranks `candidates` by `selection`. Pure: depends only on its arguments.
+/// The filters run on the candidates in enumeration order and the candidates they keep are
+/// then put in `selection.order` (stable); every filter's verdict depends on the set it is
+/// given, not on its order, so this is the order-then-filter of the seed's Fig. 15.
 [[nodiscard]] Ranking rank(const Selection& selection, std::vector<TraceCandidate> candidates);
 
 /// The candidates of one selection: two per loop of `loops`, side A then side B, with the
