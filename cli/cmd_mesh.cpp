@@ -257,6 +257,8 @@ int run_mesh(const MeshArgs& a) {
   const bool want_cell_data = (!a.no_cell_data && format_has_data) || !a.html.empty();
   auto digest = std::make_shared<primal::TraceDigest>();
   if (want_cell_data) {
+    // The cell data read only the candidate each selection chose.
+    if (a.trace.empty()) options.weave.trace_chosen_only = true;
     options.weave.on_trace = [previous = options.weave.on_trace,
                               digest](const weave::TraceEvent& e) {
       if (previous) previous(e);

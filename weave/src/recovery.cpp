@@ -46,6 +46,9 @@ class Deferred final : public WeaveObserver {
   void on_shrink_failed(std::size_t step, std::int32_t shrink, const std::string& reason) override {
     calls_.emplace_back([=](WeaveObserver& o) { o.on_shrink_failed(step, shrink, reason); });
   }
+  [[nodiscard]] bool reads_every_candidate() const override {
+    return parent_ != nullptr && parent_->reads_every_candidate();
+  }
   /// Hands every held call to the parent, in order.
   void flush() {
     if (parent_ != nullptr)

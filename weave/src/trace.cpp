@@ -3,6 +3,9 @@
 
 #include "trace.hpp"
 
+#include <algorithm>
+#include <cstddef>
+
 namespace stcweave::weave {
 
 void TraceRecorder::record(TraceEvent e) {
@@ -17,8 +20,14 @@ void TraceRecorder::on_selection(std::size_t step, std::int32_t shrink,
   TraceEvent e;
   e.kind = TraceEvent::Kind::Selection;
   e.step = step;
-  e.candidates.assign(candidates.begin(), candidates.end());
-  e.chosen = static_cast<std::int32_t>(chosen);
+  if (options_.trace_chosen_only) {
+    e.candidates.assign(candidates.begin() + static_cast<std::ptrdiff_t>(chosen),
+                        candidates.begin() + static_cast<std::ptrdiff_t>(chosen) + 1);
+    e.chosen = 0;
+  } else {
+    e.candidates.assign(candidates.begin(), candidates.end());
+    e.chosen = static_cast<std::int32_t>(chosen);
+  }
   e.reason = reason;
   e.filters.assign(filters.begin(), filters.end());
   e.decided_by = decided_by;
@@ -56,6 +65,11 @@ void ObserverList::on_selection(std::size_t step, std::int32_t shrink,
                                 const std::string& decided_by) {
   for (WeaveObserver* o : observers_)
     o->on_selection(step, shrink, candidates, chosen, reason, filters, decided_by);
+}
+
+bool ObserverList::reads_every_candidate() const {
+  return std::any_of(observers_.begin(), observers_.end(),
+                     [](const WeaveObserver* o) { return o->reads_every_candidate(); });
 }
 
 void ObserverList::on_rule(std::size_t step, std::int32_t shrink, const char* rule, NodeId node,

@@ -19,6 +19,7 @@ class TraceRecorder final : public WeaveObserver {
   void on_rule(std::size_t step, std::int32_t shrink, const char* rule, NodeId node,
                std::span<const FaceOwner> faces, HexId hex) override;
   void on_shrink_failed(std::size_t step, std::int32_t shrink, const std::string& reason) override;
+  [[nodiscard]] bool reads_every_candidate() const override { return !options_.trace_chosen_only; }
   /// The events kept (with `WeaveOptions::trace`).
   std::vector<TraceEvent> take() { return std::move(events_); }
 
@@ -42,6 +43,7 @@ class ObserverList final : public WeaveObserver {
   void on_rule(std::size_t step, std::int32_t shrink, const char* rule, NodeId node,
                std::span<const FaceOwner> faces, HexId hex) override;
   void on_shrink_failed(std::size_t step, std::int32_t shrink, const std::string& reason) override;
+  [[nodiscard]] bool reads_every_candidate() const override;
 
  private:
   std::vector<WeaveObserver*> observers_;

@@ -160,6 +160,12 @@ struct WeaveOptions {
   /// When set, every trace event is also handed to it as it happens (independently of
   /// `trace`), so that the trace of a weave that throws is not lost.
   std::function<void(const TraceEvent&)> on_trace;
+  /// The trace's selection events hold only the candidate chosen (`chosen` 0), not every
+  /// candidate ranked. The driver then needs the chosen one only and computes the others in
+  /// part, as with no trace at all (branch and bound for `reliable`, side properties on demand
+  /// for a geometric selection: select/bounded.hpp, select/candidates.hpp), so a trace of the
+  /// choices costs no more than the weave. The choices, rules and hexes are the same.
+  bool trace_chosen_only = false;
   /// Give up after this many rule applications; 0 chooses 8 * quads^1.5 + 20000 (a k x k x k
   /// box needs about 3 k^3 = 0.02 quads^1.5).
   std::size_t max_rules = 0;
