@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Byte-for-byte regression check of the weaver through the CLI.
 #
-#   bench/compare_weave.sh DIR [--bin PATH] [--timeout S] [--shared N] [--weavable]
+#   bench/compare_weave.sh DIR [--bin PATH] [--timeout S] [--shared N] [--weavable] [--no-trace]
 #
 # First invocation (DIR absent): runs `stcweave mesh` on data/lblock.obj, every input of
 # bench/generated.manifest and the first N (default 40) inputs of bench/shared.manifest,
@@ -12,7 +12,10 @@
 #   NAME.RULES.rc     the exit code (and the first stderr line)
 # A run over the time limit (default 60 s) is recorded as skipped. With --weavable, the shared
 # inputs taken are those the manifest marks genus 0 without self-intersecting loops (the ones
-# that reach the weaver), and lblock and the generated shapes are left out.
+# that reach the weaver), and lblock and the generated shapes are left out. With --no-trace the
+# runs have no --trace (and no .trace files): a trace makes the weaver compute every candidate
+# of every selection, so only these runs check the path a user without --trace gets (the
+# candidates after the first computed in part: weave/src/select/bounded.hpp, candidates.hpp).
 # Second invocation (DIR present): runs the same list into DIR.new and diffs every file
 # against DIR (inputs skipped in DIR are skipped again). Exit 0 when every file is identical.
 #
@@ -28,12 +31,14 @@ bin="$root/build/bin/stcweave"
 limit=60
 shared=40
 weavable=0
+trace=1
 while [[ $# -gt 0 ]]; do
   case $1 in
     --bin) bin=$2; shift 2 ;;
     --timeout) limit=$2; shift 2 ;;
     --shared) shared=$2; shift 2 ;;
     --weavable) weavable=1; shift ;;
+    --no-trace) trace=0; shift ;;
     *) echo "unknown option $1" >&2; exit 1 ;;
   esac
 done
@@ -103,8 +108,10 @@ while read -r name file; do
     run_limit=$limit
     [[ $mode == compare ]] && run_limit=$((4 * limit))
     set +e
+    trace_args=()
+    [[ $trace -eq 1 ]] && trace_args=(--trace "$base.trace")
     timeout "$run_limit" "$bin" mesh "$file" -o "$base.vtk" --rules "$rules" --report "$base.json" \
-      --trace "$base.trace" -q 2>"$base.err"
+      "${trace_args[@]}" -q 2>"$base.err"
     rc=$?
     set -e
     if [[ $rc -eq 124 ]]; then
