@@ -12,24 +12,11 @@
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/weave/kernel.hpp"
 #include "stcweave/weave/weave.hpp"
+#include "support/counting_observer.hpp"
 #include "support/shapes.hpp"
 
 namespace stcweave::weave {
 namespace {
-
-/// Counts what it is told; attaching it makes the driver compute every candidate's weight.
-class CountingObserver final : public WeaveObserver {
- public:
-  std::size_t selections = 0;
-  std::size_t failed = 0;
-  void on_selection(std::size_t, std::int32_t, std::span<const TraceCandidate>, std::size_t,
-                    const std::string&, std::span<const std::string>, const std::string&) override {
-    ++selections;
-  }
-  void on_rule(std::size_t, std::int32_t, const char*, NodeId, std::span<const FaceOwner>,
-               HexId) override {}
-  void on_shrink_failed(std::size_t, std::int32_t, const std::string&) override { ++failed; }
-};
 
 struct Shape {
   std::string name;
@@ -86,7 +73,7 @@ TEST(BoundedSelection, FailedShrinksFallBackToEveryWeight) {
     bounded.check = true;
     bounded.backtrack = backtrack;
     bounded.max_rules = 300;
-    CountingObserver counting;
+    test::CountingObserver counting;
     WeaveOptions full = bounded;
     full.observer = &counting;
     const Outcome a = run(ring, bounded);
@@ -103,7 +90,7 @@ TEST(BoundedSelection, ChoosesAsEveryWeightAtEverySelection) {
     bounded.check = true;  // the driver compares with the full ranking at every selection
     WeaveResult a;
     ASSERT_NO_THROW(a = weave(s.surface, bounded)) << s.name;
-    CountingObserver counting;
+    test::CountingObserver counting;
     WeaveOptions full;
     full.observer = &counting;
     const WeaveResult b = weave(s.surface, full);
@@ -118,7 +105,7 @@ TEST(BoundedSelection, SameWithoutBacktracking) {
     WeaveOptions bounded;
     bounded.check = true;
     bounded.backtrack = false;
-    CountingObserver counting;
+    test::CountingObserver counting;
     WeaveOptions full = bounded;
     full.check = false;
     full.observer = &counting;

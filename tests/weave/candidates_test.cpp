@@ -15,6 +15,7 @@
 #include "stcweave/weave/kernel.hpp"
 #include "stcweave/weave/select.hpp"
 #include "stcweave/weave/weave.hpp"
+#include "support/counting_observer.hpp"
 #include "support/shapes.hpp"
 
 namespace stcweave::weave {
@@ -60,19 +61,6 @@ std::vector<Shape> shapes() {
                                                  {2, 0, 1}})});
   return out;
 }
-
-/// Counts the selections; attaching it makes the driver compute every candidate.
-class CountingObserver final : public WeaveObserver {
- public:
-  std::size_t selections = 0;
-  void on_selection(std::size_t, std::int32_t, std::span<const TraceCandidate>, std::size_t,
-                    const std::string&, std::span<const std::string>, const std::string&) override {
-    ++selections;
-  }
-  void on_rule(std::size_t, std::int32_t, const char*, NodeId, std::span<const FaceOwner>,
-               HexId) override {}
-  void on_shrink_failed(std::size_t, std::int32_t, const std::string&) override {}
-};
 
 void expect_same_candidate(const TraceCandidate& a, const TraceCandidate& b,
                            const std::string& where) {
@@ -159,7 +147,7 @@ TEST(Candidates, TheWeaveChoosesAsWithEveryCandidateComputed) {
       lazy.check = true;  // the driver compares with the full ranking at every selection
       WeaveResult a;
       ASSERT_NO_THROW(a = weave(s.mesh.surface, lazy, angles)) << where;
-      CountingObserver counting;
+      test::CountingObserver counting;
       WeaveOptions full = lazy;
       full.observer = &counting;
       const WeaveResult b = weave(s.mesh.surface, full, angles);

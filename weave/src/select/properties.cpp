@@ -50,6 +50,27 @@ FrontComponents front_components(const Front& front, Marks& marks) {
   return out;
 }
 
+namespace {
+
+/// The faces of a strip stamped with a fresh stamp of `faces`, and whether the strip passes a
+/// face twice (its loop crosses itself there).
+struct StripFaces {
+  std::uint32_t stamp = 0;
+  bool self_intersecting = false;
+};
+StripFaces stamp_strip_faces(const Front& front, const Strip& strip, Marks& faces) {
+  StripFaces out;
+  out.stamp = faces.fresh(front.face_capacity());
+  for (const stc::StripStep& p : strip) {
+    const auto f = static_cast<std::size_t>(face_of(p));
+    if (faces.is(f, out.stamp)) out.self_intersecting = true;
+    faces.set(f, out.stamp);
+  }
+  return out;
+}
+
+}  // namespace
+
 std::array<TraceCandidate, 2> weigh(const Front& front, const Strip& strip,
                                     const FrontComponents& components, Marks& nodes, Marks& faces) {
   return weigh_within(front, face_table(front, false), strip, components, nodes, faces,
@@ -65,14 +86,9 @@ std::array<TraceCandidate, 2> weigh_within(const Front& front, const FaceTable& 
   c[0].side = 0;
   c[1].side = 1;
   c[0].length = c[1].length = strip.size();
-  const std::uint32_t strip_stamp = faces.fresh(front.face_capacity());
-  bool self_intersecting = false;
-  for (const stc::StripStep& p : strip) {
-    const auto f = static_cast<std::size_t>(face_of(p));
-    if (faces.is(f, strip_stamp)) self_intersecting = true;
-    faces.set(f, strip_stamp);
-  }
-  c[0].self_intersecting = c[1].self_intersecting = self_intersecting;
+  const StripFaces strip_faces = stamp_strip_faces(front, strip, faces);
+  const std::uint32_t strip_stamp = strip_faces.stamp;
+  c[0].self_intersecting = c[1].self_intersecting = strip_faces.self_intersecting;
   // Stamps: `on` for strip nodes, `side[0]`/`side[1]` for nodes reached from either side.
   const std::uint32_t on = nodes.fresh(front.num_nodes());
   const std::array<std::uint32_t, 2> side{nodes.fresh(front.num_nodes()),
@@ -120,7 +136,7 @@ std::array<TraceCandidate, 2> weigh_within(const Front& front, const FaceTable& 
   };
   // A side cannot win once the nodes it reached exceed its limit (every node reached is
   // counted in its weight, met or not); a loop none of whose sides can win is left here.
-  const bool bounded = pruned != nullptr && !self_intersecting;
+  const bool bounded = pruned != nullptr && !strip_faces.self_intersecting;
   const auto beyond = [&] {
     return on_strip + count[0] > limit[0] && on_strip + count[1] > limit[1];
   };
@@ -739,14 +755,7 @@ CandidateSet::CandidateSet(const Front& front, const FrontLoops& loops,
   known_.assign(n, 0U);
   for (std::size_t l = 0; l < n; ++l) {
     const Strip& strip = loops.strips[l];
-    // A loop crosses itself where it passes a face twice (as `weigh_within` finds it).
-    const std::uint32_t stamp = faces.fresh(front.face_capacity());
-    bool self_intersecting = false;
-    for (const stc::StripStep& p : strip) {
-      const auto f = static_cast<std::size_t>(face_of(p));
-      if (faces.is(f, stamp)) self_intersecting = true;
-      faces.set(f, stamp);
-    }
+    const bool self_intersecting = stamp_strip_faces(front, strip, faces).self_intersecting;
     const StripEdges edges = count_strip_edges(table_, strip, parameters);
     const std::size_t comp =
         components.component_of[front.face(face_of(strip.front())).nodes[0].index()];
