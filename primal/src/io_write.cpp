@@ -1,5 +1,6 @@
 /// \file
-/// Mesh writers. Each writer formats the whole file in memory (numbers with `%.17g`, so the
+/// Mesh writers. Each writer formats the whole file in memory (numbers as `%.17g` would print
+/// them, through `std::to_chars`, which is specified to give the same characters, so the
 /// output is byte-for-byte deterministic and doubles read back exactly), writes it to a
 /// temporary file in the target's folder and renames it over the target: a failure never
 /// leaves a truncated file in place of a good one.
@@ -8,6 +9,7 @@
 #include <array>
 #include <cctype>
 #include <cerrno>
+#include <charconv>
 #include <cstdio>
 #include <cstring>
 #include <random>
@@ -36,15 +38,17 @@ class Out {
   /// An integer, in decimal.
   Out& integer(long long v) {
     std::array<char, 24> buf{};
-    const int n = std::snprintf(buf.data(), buf.size(), "%lld", v);
-    text_.append(buf.data(), static_cast<std::size_t>(n));
+    const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), v);
+    text_.append(buf.data(), r.ptr);
     return *this;
   }
-  /// A real with `%.17g`.
+  /// A real as `%.17g` prints it (`std::to_chars` with the general format and precision 17
+  /// is specified to give printf's characters; it skips printf's format parsing and locale).
   Out& real(double v) {
     std::array<char, 40> buf{};
-    const int n = std::snprintf(buf.data(), buf.size(), "%.17g", v);
-    text_.append(buf.data(), static_cast<std::size_t>(n));
+    const auto r =
+        std::to_chars(buf.data(), buf.data() + buf.size(), v, std::chars_format::general, 17);
+    text_.append(buf.data(), r.ptr);
     return *this;
   }
   /// `x y z` of row `i` of `points`.

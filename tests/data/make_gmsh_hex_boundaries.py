@@ -18,7 +18,11 @@ import json
 import os
 import sys
 
-import gmsh
+try:
+    import gmsh
+except ImportError:  # pragma: no cover
+    sys.exit("make_gmsh_hex_boundaries.py: the gmsh Python module is missing: apt-get install "
+             "python3-gmsh and run with /usr/bin/python3")
 
 # (name, builder, mesh size): sizes chosen so that the coarse cases stay small enough for a
 # quick run and the fine ones are about eight times larger.
