@@ -13,6 +13,7 @@
 #include "stcweave/weave/kernel.hpp"
 #include "stcweave/weave/weave.hpp"
 #include "support/counting_observer.hpp"
+#include "support/same_weave.hpp"
 #include "support/shapes.hpp"
 
 namespace stcweave::weave {
@@ -33,19 +34,6 @@ std::vector<Shape> shapes() {
       {"ogrid cylinder",
        test::boundary_of(test::extruded_hexes(test::ogrid_disk(), {0.0, 0.5, 1.0})).surface});
   return out;
-}
-
-void expect_same(const WeaveResult& a, const WeaveResult& b, const std::string& name) {
-  EXPECT_EQ(a.complex.num_nodes, b.complex.num_nodes) << name;
-  EXPECT_EQ(a.complex.hexes, b.complex.hexes) << name;
-  EXPECT_EQ(a.hex_shrink, b.hex_shrink) << name;
-  EXPECT_EQ(a.stats.selections, b.stats.selections) << name;
-  EXPECT_EQ(a.stats.shrinks, b.stats.shrinks) << name;
-  EXPECT_EQ(a.stats.failed_shrinks, b.stats.failed_shrinks) << name;
-  EXPECT_EQ(a.stats.rolled_back_shrinks, b.stats.rolled_back_shrinks) << name;
-  EXPECT_EQ(a.stats.crosses, b.stats.crosses) << name;
-  EXPECT_EQ(a.stats.seams, b.stats.seams) << name;
-  EXPECT_EQ(a.stats.blind_chords, b.stats.blind_chords) << name;
 }
 
 /// The outcome of a weave: its result, or the message of the weave error it ended with.
@@ -80,7 +68,7 @@ TEST(BoundedSelection, FailedShrinksFallBackToEveryWeight) {
     const Outcome b = run(ring, full);
     EXPECT_GT(counting.failed, 0U) << "backtrack " << backtrack << ": no shrink failed";
     EXPECT_EQ(a.error, b.error) << "backtrack " << backtrack;
-    if (a.error.empty() && b.error.empty()) expect_same(a.result, b.result, "ring");
+    if (a.error.empty() && b.error.empty()) test::expect_same_weave(a.result, b.result, "ring");
   }
 }
 
@@ -94,7 +82,7 @@ TEST(BoundedSelection, ChoosesAsEveryWeightAtEverySelection) {
     WeaveOptions full;
     full.observer = &counting;
     const WeaveResult b = weave(s.surface, full);
-    expect_same(a, b, s.name);
+    test::expect_same_weave(a, b, s.name);
     EXPECT_EQ(counting.selections, b.stats.shrinks + b.stats.failed_shrinks) << s.name;
     EXPECT_GT(a.stats.selections, 1U) << s.name << ": more than one selection to compare";
   }
@@ -124,7 +112,7 @@ TEST(BoundedSelection, SameWithoutBacktracking) {
       b_failed = true;
     }
     ASSERT_EQ(a_failed, b_failed) << s.name;
-    if (!a_failed) expect_same(a, b, s.name);
+    if (!a_failed) test::expect_same_weave(a, b, s.name);
   }
 }
 

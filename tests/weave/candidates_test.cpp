@@ -16,6 +16,7 @@
 #include "stcweave/weave/select.hpp"
 #include "stcweave/weave/weave.hpp"
 #include "support/counting_observer.hpp"
+#include "support/same_weave.hpp"
 #include "support/shapes.hpp"
 
 namespace stcweave::weave {
@@ -151,13 +152,7 @@ TEST(Candidates, TheWeaveChoosesAsWithEveryCandidateComputed) {
       WeaveOptions full = lazy;
       full.observer = &counting;
       const WeaveResult b = weave(s.mesh.surface, full, angles);
-      EXPECT_EQ(a.complex.num_nodes, b.complex.num_nodes) << where;
-      EXPECT_EQ(a.complex.hexes, b.complex.hexes) << where;
-      EXPECT_EQ(a.hex_rule, b.hex_rule) << where;
-      EXPECT_EQ(a.stats.selections, b.stats.selections) << where;
-      EXPECT_EQ(a.stats.shrinks, b.stats.shrinks) << where;
-      EXPECT_EQ(a.stats.failed_shrinks, b.stats.failed_shrinks) << where;
-      EXPECT_EQ(a.stats.parallel_merges, b.stats.parallel_merges) << where;
+      test::expect_same_weave(a, b, where);
       EXPECT_GT(counting.selections, 1U) << where << ": more than one selection to compare";
     }
   }
