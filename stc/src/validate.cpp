@@ -4,6 +4,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "bucket_sort.hpp"
 #include "stcweave/stc/errors.hpp"
 #include "union_find.hpp"
 
@@ -254,7 +255,7 @@ ValidationReport validate_hex_complex(const HexComplex& complex,
                                static_cast<std::uint32_t>(6 * h + static_cast<std::size_t>(f)));
       }
     }
-    std::sort(entries.begin(), entries.end());
+    detail::sort_by_smallest_node(entries, [](const auto& e) { return e.first[0]; });
     face_slots.reserve(entries.size());
     for (std::size_t i = 0; i < entries.size(); ++i) {
       if (i == 0 || entries[i].first != entries[i - 1].first) {
@@ -331,7 +332,7 @@ ValidationReport validate_hex_complex(const HexComplex& complex,
         entries.emplace_back((u << 32) | v, static_cast<std::uint32_t>(12 * h + k));
       }
     }
-    std::sort(entries.begin(), entries.end());
+    detail::sort_by_smallest_node(entries, [](const auto& e) { return e.first >> 32; });
     edge_slots.reserve(entries.size());
     for (std::size_t i = 0; i < entries.size(); ++i) {
       if (i == 0 || entries[i].first != entries[i - 1].first) {

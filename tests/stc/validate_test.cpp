@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <map>
+#include <random>
 #include <set>
 #include <tuple>
 
@@ -277,6 +278,41 @@ TEST(UniqueEdges, OfABoxAreItsGridEdgesSortedOnce) {
   EXPECT_TRUE(std::is_sorted(edges.begin(), edges.end()));
   EXPECT_TRUE(std::adjacent_find(edges.begin(), edges.end()) == edges.end());
   for (const auto& [a, b] : edges) EXPECT_LT(a, b);
+}
+
+/// Every hex edge as a sorted pair, sorted and deduplicated: the definition, for comparison.
+std::vector<std::pair<std::int32_t, std::int32_t>> sorted_hex_edges(const HexComplex& c) {
+  std::vector<std::pair<std::int32_t, std::int32_t>> all;
+  for (const Hex& h : c.hexes) {
+    for (const auto& e : kHexEdges) {
+      const std::int32_t a = h[static_cast<std::size_t>(e[0])].value();
+      const std::int32_t b = h[static_cast<std::size_t>(e[1])].value();
+      all.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  }
+  std::sort(all.begin(), all.end());
+  all.erase(std::unique(all.begin(), all.end()), all.end());
+  return all;
+}
+
+TEST(UniqueEdges, MatchASortOfEveryHexEdge) {
+  // Node values shuffled so that the smaller end of an edge is any corner of the hex; and
+  // the same complex with ids out of range (huge, negative), which the buckets cannot index.
+  HexComplex box = test::box_hexes(4, 3, 2).complex;
+  std::vector<std::int32_t> relabel(box.num_nodes);
+  for (std::size_t v = 0; v < relabel.size(); ++v) relabel[v] = static_cast<std::int32_t>(v);
+  std::mt19937 rng(7);
+  std::shuffle(relabel.begin(), relabel.end(), rng);
+  for (Hex& h : box.hexes)
+    for (NodeId& v : h) v = NodeId(relabel[v.index()]);
+  EXPECT_EQ(unique_edges(box), sorted_hex_edges(box));
+  EXPECT_EQ(unique_edges(test::pinched_star().complex),
+            sorted_hex_edges(test::pinched_star().complex));
+  box.hexes[6][1] = NodeId(1 << 30);  // far beyond the entries: sorted without buckets
+  EXPECT_EQ(unique_edges(box), sorted_hex_edges(box));
+  box.hexes[5][3] = NodeId(-4);
+  EXPECT_EQ(unique_edges(box), sorted_hex_edges(box));
+  EXPECT_TRUE(unique_edges(HexComplex{}).empty());
 }
 
 TEST(Validate, PinchedFacePairIsReportedOnlyWhenAsked) {
