@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "stcweave/primal/quality.hpp"
+#include "stcweave/stc/bucket_sort.hpp"
 #include "stcweave/stc/errors.hpp"
 
 namespace stcweave::primal {
@@ -171,11 +172,13 @@ std::vector<std::array<std::int32_t, 6>> hex_face_neighbours(const stc::HexCompl
       keys.push_back(k);
     }
   }
-  std::sort(keys.begin(), keys.end(), [](const FaceKey& a, const FaceKey& b) {
-    if (a.nodes != b.nodes) return a.nodes < b.nodes;
-    if (a.hex != b.hex) return a.hex < b.hex;
-    return a.face < b.face;
-  });
+  stc::sort_by_smallest_node(
+      keys, [](const FaceKey& k) { return k.nodes[0]; },
+      [](const FaceKey& a, const FaceKey& b) {
+        if (a.nodes != b.nodes) return a.nodes < b.nodes;
+        if (a.hex != b.hex) return a.hex < b.hex;
+        return a.face < b.face;
+      });
   std::vector<std::array<std::int32_t, 6>> out(m);
   for (auto& a : out) a.fill(-1);
   std::size_t i = 0;

@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "stcweave/stc/bucket_sort.hpp"
 #include "stcweave/stc/errors.hpp"
 
 namespace stcweave::primal {
@@ -63,7 +64,7 @@ ValenceStats valence_stats(const stc::HexComplex& complex) {
       faces.emplace_back(key, h);
     }
   }
-  std::sort(faces.begin(), faces.end());
+  stc::sort_by_smallest_node(faces, [](const auto& f) { return f.first[0]; });
   std::vector<bool> boundary_node(n, false);
   std::vector<Edge> boundary_edges;
   for (std::size_t i = 0; i < faces.size();) {
@@ -88,7 +89,7 @@ ValenceStats valence_stats(const stc::HexComplex& complex) {
     }
     i = j;
   }
-  std::sort(boundary_edges.begin(), boundary_edges.end());
+  stc::sort_by_smallest_node(boundary_edges, [](const Edge& e) { return e.first; });
   boundary_edges.erase(std::unique(boundary_edges.begin(), boundary_edges.end()),
                        boundary_edges.end());
 
@@ -110,8 +111,8 @@ ValenceStats valence_stats(const stc::HexComplex& complex) {
     std::sort(vs.begin(), vs.end());
     nodes.insert(nodes.end(), vs.begin(), std::unique(vs.begin(), vs.end()));
   }
-  std::sort(edges.begin(), edges.end());
-  std::sort(nodes.begin(), nodes.end());
+  stc::sort_by_smallest_node(edges, [](const Edge& e) { return e.first; });
+  stc::sort_by_smallest_node(nodes, [](std::int32_t v) { return v; });
   runs(edges, [&](const Edge& e, std::size_t k) {
     if (std::binary_search(boundary_edges.begin(), boundary_edges.end(), e)) return;
     ++out.interior_edges;

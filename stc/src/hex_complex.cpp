@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <unordered_map>
 
-#include "bucket_sort.hpp"
+#include "stcweave/stc/bucket_sort.hpp"
 
 namespace stcweave::stc {
 namespace {
@@ -75,7 +75,7 @@ std::vector<std::pair<std::int32_t, std::int32_t>> unique_edges(const HexComplex
       edges.emplace_back(a, b);
     }
   }
-  detail::sort_by_smallest_node(edges, [](const auto& e) { return e.first; });
+  sort_by_smallest_node(edges, [](const auto& e) { return e.first; });
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   return edges;
 }

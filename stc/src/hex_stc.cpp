@@ -5,7 +5,7 @@
 #include <numeric>
 #include <string>
 
-#include "bucket_sort.hpp"
+#include "stcweave/stc/bucket_sort.hpp"
 #include "stcweave/stc/errors.hpp"
 #include "union_find.hpp"
 
@@ -86,7 +86,7 @@ FaceTable match_faces(const HexComplex& complex) {
       entries.push_back(e);
     }
   }
-  detail::sort_by_smallest_node(
+  sort_by_smallest_node(
       entries, [](const Entry& e) { return e.key[0]; },
       [](const Entry& a, const Entry& b) {
         return a.key != b.key ? a.key < b.key : a.slot < b.slot;
@@ -119,7 +119,7 @@ std::vector<std::uint32_t> match_edges(const HexComplex& complex, std::size_t* n
       entries.emplace_back((u << 32) | v, static_cast<std::uint32_t>(12 * h + k));
     }
   }
-  detail::sort_by_smallest_node(entries, [](const auto& e) { return e.first >> 32; });
+  sort_by_smallest_node(entries, [](const auto& e) { return e.first >> 32; });
   std::vector<std::uint32_t> edge_of_slot(entries.size(), 0);
   std::uint32_t next = 0;
   for (std::size_t i = 0; i < entries.size(); ++i) {

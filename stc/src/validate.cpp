@@ -4,7 +4,7 @@
 #include <numeric>
 #include <sstream>
 
-#include "bucket_sort.hpp"
+#include "stcweave/stc/bucket_sort.hpp"
 #include "stcweave/stc/errors.hpp"
 #include "union_find.hpp"
 
@@ -177,7 +177,12 @@ std::vector<PinchedFaces> pinched_faces(const HexComplex& complex) {
       faces.push_back(face);
     }
   }
-  std::sort(faces.begin(), faces.end(), [](const Face& a, const Face& b) { return a.key < b.key; });
+  // By key, then by cycle: of the two uses of an inner face, the one kept is well defined.
+  sort_by_smallest_node(
+      faces, [](const Face& f) { return f.key[0]; },
+      [](const Face& a, const Face& b) {
+        return a.key != b.key ? a.key < b.key : a.cycle < b.cycle;
+      });
   faces.erase(std::unique(faces.begin(), faces.end(),
                           [](const Face& a, const Face& b) { return a.key == b.key; }),
               faces.end());
@@ -192,7 +197,7 @@ std::vector<PinchedFaces> pinched_faces(const HexComplex& complex) {
       corners.push_back({c[i], std::min(a, b), std::max(a, b), static_cast<std::int32_t>(f)});
     }
   }
-  std::sort(corners.begin(), corners.end());
+  sort_by_smallest_node(corners, [](const auto& c) { return c[0]; });
   std::vector<PinchedFaces> out;
   for (std::size_t i = 0; i + 1 < corners.size(); ++i) {
     const auto& x = corners[i];
@@ -255,7 +260,7 @@ ValidationReport validate_hex_complex(const HexComplex& complex,
                                static_cast<std::uint32_t>(6 * h + static_cast<std::size_t>(f)));
       }
     }
-    detail::sort_by_smallest_node(entries, [](const auto& e) { return e.first[0]; });
+    sort_by_smallest_node(entries, [](const auto& e) { return e.first[0]; });
     face_slots.reserve(entries.size());
     for (std::size_t i = 0; i < entries.size(); ++i) {
       if (i == 0 || entries[i].first != entries[i - 1].first) {
@@ -332,7 +337,7 @@ ValidationReport validate_hex_complex(const HexComplex& complex,
         entries.emplace_back((u << 32) | v, static_cast<std::uint32_t>(12 * h + k));
       }
     }
-    detail::sort_by_smallest_node(entries, [](const auto& e) { return e.first >> 32; });
+    sort_by_smallest_node(entries, [](const auto& e) { return e.first >> 32; });
     edge_slots.reserve(entries.size());
     for (std::size_t i = 0; i < entries.size(); ++i) {
       if (i == 0 || entries[i].first != entries[i - 1].first) {

@@ -31,6 +31,50 @@ TEST(Front, AcrossFindsTheTwinSide) {
   }
 }
 
+/// Every alive face side: `across` gives what a search of the faces at the edge's first node
+/// gives (the remembered answers are only hints).
+void expect_across_is_the_search(const Front& front) {
+  for (FaceIndex f = 0; f < static_cast<FaceIndex>(front.face_capacity()); ++f) {
+    if (!front.is_alive(f)) continue;
+    const stc::Quad& n = front.face(f).nodes;
+    for (int side = 0; side < 4; ++side) {
+      const FaceSide got = front.across(f, side);
+      const FaceSide want = front.find_edge(n[static_cast<std::size_t>((side + 1) % 4)],
+                                            n[static_cast<std::size_t>(side)]);
+      EXPECT_EQ(got.face, want.face) << "face " << f << " side " << side;
+      EXPECT_EQ(got.index, want.index) << "face " << f << " side " << side;
+    }
+  }
+}
+
+TEST(Front, AcrossStaysRightWhenFacesChangeUnderIt) {
+  // Ask every side first (so every answer is remembered), then reuse a slot for the same
+  // quad started at another corner (every side index of it and of its neighbours' answers
+  // moves), merge a node, and roll a checkpoint back: each time the answers follow.
+  const auto box = test::box_surface(2, 1, 1);
+  Front front(box.surface);
+  expect_across_is_the_search(front);
+  const stc::Quad q = front.face(2).nodes;
+  const FaceOwner owner = front.face(2).owner;
+  Front::Checkpoint c = front.checkpoint();
+  front.remove_face(2);
+  EXPECT_EQ(front.add_face({q[1], q[2], q[3], q[0]}, owner, 0), 2);
+  EXPECT_FALSE(front.check_invariants().has_value());
+  expect_across_is_the_search(front);
+  const NodeId a = front.new_node();
+  const stc::Quad r = front.face(5).nodes;
+  front.remove_face(5);
+  const FaceIndex g = front.add_face({r[0], r[1], r[2], a}, owner, 0);
+  front.merge_nodes(r[3], a);
+  EXPECT_FALSE(front.check_invariants().has_value());
+  expect_across_is_the_search(front);
+  EXPECT_EQ(front.across(g, 2).face, front.find_edge(r[3], r[2]).face);
+  front.roll_back(std::move(c));
+  EXPECT_FALSE(front.check_invariants().has_value());
+  EXPECT_EQ(front.face(2).nodes, q);
+  expect_across_is_the_search(front);
+}
+
 TEST(Front, RemovingAFaceOpensTheFront) {
   const auto cube = test::box_surface(1, 1, 1);
   Front front(cube.surface);

@@ -170,7 +170,19 @@ FaceSide Front::find_edge(NodeId from, NodeId to) const {
 
 FaceSide Front::across(FaceIndex f, int side) const {
   const auto& n = face(f).nodes;
-  return find_edge(n[static_cast<std::size_t>((side + 1) % 4)], n[static_cast<std::size_t>(side)]);
+  const NodeId from = n[static_cast<std::size_t>((side + 1) % 4)];
+  const NodeId to = n[static_cast<std::size_t>(side)];
+  const auto fi = static_cast<std::size_t>(f);
+  if (fi >= across_hint_.size()) across_hint_.resize(faces_.size());
+  FaceSide& hint = across_hint_[fi][static_cast<std::size_t>(side)];
+  if (hint.face != kNoFace && is_alive(hint.face)) {
+    const auto& m = face(hint.face).nodes;
+    if (m[static_cast<std::size_t>(hint.index)] == from &&
+        m[static_cast<std::size_t>((hint.index + 1) % 4)] == to)
+      return hint;
+  }
+  hint = find_edge(from, to);
+  return hint;
 }
 
 std::optional<std::string> Front::check_invariants() const {

@@ -17,6 +17,26 @@
 
 namespace stcweave::weave {
 
+namespace {
+
+/// Sorts `order[from..]` by front valence, keeping loop order among equal valences: what
+/// `std::stable_sort` by valence gives, by counting (valences are small integers), so that a
+/// shrink whose first node is blocked does not pay n log n at every step of a long loop.
+void stable_sort_by_valence(const Front& front, std::vector<NodeId>& order, std::size_t from,
+                            std::vector<NodeId>& buffer, std::vector<std::uint32_t>& count) {
+  std::size_t top = 0;
+  for (std::size_t i = from; i < order.size(); ++i) top = std::max(top, front.valence(order[i]));
+  count.assign(top + 2, 0);
+  for (std::size_t i = from; i < order.size(); ++i) ++count[front.valence(order[i]) + 1];
+  for (std::size_t k = 0; k + 1 < count.size(); ++k) count[k + 1] += count[k];
+  buffer.resize(order.size() - from);
+  for (std::size_t i = from; i < order.size(); ++i)
+    buffer[count[front.valence(order[i])]++] = order[i];
+  std::copy(buffer.begin(), buffer.end(), order.begin() + static_cast<std::ptrdiff_t>(from));
+}
+
+}  // namespace
+
 std::optional<std::string> shrink(WeaveState& state, WeaveContext& ctx, const Strip& initial,
                                   stc::LoopSide side) {
   const Front& front = state.front;
@@ -27,58 +47,76 @@ std::optional<std::string> shrink(WeaveState& state, WeaveContext& ctx, const St
   // index in `order` before it is sorted. Built once per strip, so that a blind chord tried at
   // every side node does not scan the whole strip for each.
   std::vector<std::uint32_t> slot, start, steps, cursor;
+  std::vector<NodeId> by_valence_buffer;
+  std::vector<std::uint32_t> by_valence_count;
   for (;;) {
     seam_fixpoint(state, ctx);
     const Strip strip = retrace(front, edges);
     if (strip.empty()) return std::nullopt;
     // Re-traced from a side-d node's edge, the strip has the shrinking side as its side A.
     edges = transversals(front, strip, stc::LoopSide::Left);
-    const FaceSet strip_faces = mark_strip_faces(ctx.faces, front, strip);
-    // side nodes in loop order, each once, and the strip steps that hold each
-    order.clear();
-    start.assign(1, 0);
-    slot.resize(front.num_nodes());
-    const std::uint32_t seen = ctx.nodes.fresh(front.num_nodes());
+    // The fewest-sided side node first (ties: loop order): one scan of the strip finds it.
+    // Its rule usually applies; the table of side nodes below (each once, in loop order, with
+    // the strip steps that hold it) is built only when a blind chord needs it or the first
+    // node is blocked, so that a long loop is not indexed again for every cross.
+    NodeId first = NodeId();
+    std::size_t first_valence = 0;
     for (const stc::StripStep& p : strip) {
       const stc::Quad& n = front.face(face_of(p)).nodes;
       for (NodeId m : {quad_at(n, p.entry), quad_at(n, p.entry + 3)}) {
-        if (!ctx.nodes.is(m.index(), seen)) {
-          ctx.nodes.set(m.index(), seen);
-          slot[m.index()] = static_cast<std::uint32_t>(order.size());
-          order.push_back(m);
-          start.push_back(0);
+        const std::size_t k = front.valence(m);
+        if (!first.is_valid() || k < first_valence) {
+          first = m;
+          first_valence = k;
         }
-        ++start[slot[m.index()] + 1];
       }
     }
-    for (std::size_t k = 1; k < start.size(); ++k) start[k] += start[k - 1];
-    cursor.assign(start.begin(), start.end() - 1);
-    steps.resize(start.back());
-    for (std::size_t i = 0; i < strip.size(); ++i) {
-      const stc::Quad& n = front.face(face_of(strip[i])).nodes;
-      for (NodeId m : {quad_at(n, strip[i].entry), quad_at(n, strip[i].entry + 3)})
-        steps[cursor[slot[m.index()]]++] = static_cast<std::uint32_t>(i);
-    }
+    FaceSet strip_faces;
+    bool indexed = false;
+    const auto index_side_nodes = [&] {
+      indexed = true;
+      strip_faces = mark_strip_faces(ctx.faces, front, strip);
+      order.clear();
+      start.assign(1, 0);
+      slot.resize(front.num_nodes());
+      const std::uint32_t seen = ctx.nodes.fresh(front.num_nodes());
+      for (const stc::StripStep& p : strip) {
+        const stc::Quad& n = front.face(face_of(p)).nodes;
+        for (NodeId m : {quad_at(n, p.entry), quad_at(n, p.entry + 3)}) {
+          if (!ctx.nodes.is(m.index(), seen)) {
+            ctx.nodes.set(m.index(), seen);
+            slot[m.index()] = static_cast<std::uint32_t>(order.size());
+            order.push_back(m);
+            start.push_back(0);
+          }
+          ++start[slot[m.index()] + 1];
+        }
+      }
+      for (std::size_t k = 1; k < start.size(); ++k) start[k] += start[k - 1];
+      cursor.assign(start.begin(), start.end() - 1);
+      steps.resize(start.back());
+      for (std::size_t i = 0; i < strip.size(); ++i) {
+        const stc::Quad& n = front.face(face_of(strip[i])).nodes;
+        for (NodeId m : {quad_at(n, strip[i].entry), quad_at(n, strip[i].entry + 3)})
+          steps[cursor[slot[m.index()]]++] = static_cast<std::uint32_t>(i);
+      }
+      // The first node to the front, the others in loop order (sorted when it is blocked).
+      const auto at = std::find(order.begin(), order.end(), first);
+      std::rotate(order.begin(), at, at + 1);
+    };
     const auto steps_of = [&](NodeId m) {
       const std::uint32_t k = slot[m.index()];
       return std::span<const std::uint32_t>(steps.data() + start[k], start[k + 1] - start[k]);
     };
-    // The fewest-sided node first (ties: loop order). Usually its rule applies, so find it
-    // by a scan and sort the rest only when it is blocked.
-    const auto by_valence = [&front](NodeId p, NodeId q) {
-      return front.valence(p) < front.valence(q);
-    };
-    const auto first = std::min_element(order.begin(), order.end(), by_valence);
-    std::rotate(order.begin(), first, first + 1);
     std::string reasons;
     bool applied = false;
     bool sorted = false;
-    for (std::size_t idx = 0; idx < order.size(); ++idx) {
+    for (std::size_t idx = 0; idx == 0 || idx < order.size(); ++idx) {
       if (idx == 1 && !sorted) {
-        std::stable_sort(order.begin() + 1, order.end(), by_valence);
+        stable_sort_by_valence(front, order, 1, by_valence_buffer, by_valence_count);
         sorted = true;
       }
-      const NodeId v = order[idx];
+      const NodeId v = idx == 0 ? first : order[idx];
       std::string why;
       const std::size_t k = front.valence(v);
       if (k == 2) {
@@ -94,12 +132,14 @@ std::optional<std::string> shrink(WeaveState& state, WeaveContext& ctx, const St
         applied = r.applied;
         if (!applied) why = "cross refused: " + r.why;
       } else {
+        if (!indexed) index_side_nodes();
         const RuleResult r = blind_chord(state, ctx, v, strip, strip_faces, steps_of(v));
         applied = r.applied;
         if (!applied) why = "blind chord refused: " + r.why;
       }
       if (applied) break;
       if (reasons.size() < 600) reasons += (reasons.empty() ? "" : "; ") + v.str() + ": " + why;
+      if (!indexed) index_side_nodes();
     }
     if (!applied && ctx.extended() && ctx.parameters().flat_cross_precondition &&
         !ctx.relax_geometry) {

@@ -103,7 +103,9 @@ class Front {
   [[nodiscard]] int corner_of(FaceIndex f, NodeId v) const;
   /// The face and side holding the directed edge from -> to, or {kNoFace, -1}.
   [[nodiscard]] FaceSide find_edge(NodeId from, NodeId to) const;
-  /// The face across side `side` of `f` and the index of the same edge in it.
+  /// The face across side `side` of `f` and the index of the same edge in it. O(1) when the
+  /// answer is the one given for this side before (kept as a checked hint), else a search of
+  /// the faces at one node.
   [[nodiscard]] FaceSide across(FaceIndex f, int side) const;
 
   /// An undo point: `roll_back` returns the front to it exactly. The flat arrays (faces,
@@ -146,6 +148,11 @@ class Front {
   };
   std::vector<IncidenceChange> journal_;
   int open_checkpoints_ = 0;
+  /// Per face slot and side, the last answer of `across`: a hint, checked before use (the
+  /// face it names must be alive and hold the reversed edge at that index, which in a valid
+  /// front only one face does), so it needs no upkeep when faces come and go, merges rename
+  /// nodes or a checkpoint is rolled back.
+  mutable std::vector<std::array<FaceSide, 4>> across_hint_;
 };
 
 }  // namespace stcweave::weave

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// Sorting of the per-slot keys that match faces and edges of a hex complex (private to stc).
+/// Sorting of the per-slot keys that match faces and edges of a hex complex.
 ///
 /// A complex of h hexes has 6h face slots and 12h edge slots; matching them sorts those keys.
 /// Every key starts with its smallest node id, so a counting sort on that id (one bucket per
@@ -13,7 +13,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace stcweave::stc::detail {
+namespace stcweave::stc {
 
 /// Sorts `entries` by `less`, a strict weak order whose first criterion is `node(e)`, the
 /// smallest node id of the entry's key: `node(a) < node(b)` implies `less(a, b)`. The result
@@ -54,4 +54,4 @@ void sort_by_smallest_node(std::vector<T>& entries, Node node) {
   sort_by_smallest_node(entries, node, [](const T& a, const T& b) { return a < b; });
 }
 
-}  // namespace stcweave::stc::detail
+}  // namespace stcweave::stc
