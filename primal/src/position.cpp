@@ -19,6 +19,7 @@
 #include <tuple>
 
 #include "stcweave/primal/quality.hpp"
+#include "stcweave/stc/bucket_sort.hpp"
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/stc/hex_complex.hpp"
 
@@ -724,10 +725,12 @@ std::vector<ImpossibleCorner> impossible_corners(const HexMesh& mesh,
     }
   }
   // Sorting groups equal corners (a sort of a flat vector: much faster than a map on
-  // meshes of 10^5 hexes).
-  std::sort(seen.begin(), seen.end(), [](const Seen& x, const Seen& y) {
-    return std::tie(x.key, x.hex_parity, x.corner) < std::tie(y.key, y.hex_parity, y.corner);
-  });
+  // meshes of 10^5 hexes; bucketed by the corner node, then sorted within each).
+  stc::sort_by_smallest_node(
+      seen, [](const Seen& x) { return x.key[0]; },
+      [](const Seen& x, const Seen& y) {
+        return std::tie(x.key, x.hex_parity, x.corner) < std::tie(y.key, y.hex_parity, y.corner);
+      });
   for (std::size_t first = 0, last = 0; first < seen.size(); first = last) {
     while (last < seen.size() && seen[last].key == seen[first].key) ++last;
     const auto& key = seen[first].key;

@@ -15,12 +15,13 @@
 
 namespace stcweave::stc {
 
-/// Sorts `entries` by `less`, a strict weak order whose first criterion is `node(e)`, the
-/// smallest node id of the entry's key: `node(a) < node(b)` implies `less(a, b)`. The result
-/// is the one `std::sort(entries, less)` gives when `less` is a total order (no two entries
-/// equivalent), which is how every caller uses it: keys are completed by the slot number.
-/// A negative node id or one far beyond the number of entries (not an id: a complex that
-/// has not been range-checked) falls back to `std::sort`.
+/// Sorts `entries` by `less`, a strict weak order whose first criterion is `node(e)`, a node
+/// id of the entry (the smallest node of a face or edge key, the corner node of a corner):
+/// `node(a) < node(b)` implies `less(a, b)`. The result is the one `std::sort(entries, less)`
+/// gives when no two entries are equivalent without being equal, which is how every caller
+/// uses it (keys completed by a slot number, or plain values). A negative node id or one far beyond
+/// the number of entries (not an id: a complex that has not been range-checked) falls back to
+/// `std::sort`.
 template <class T, class Node, class Less>
 void sort_by_smallest_node(std::vector<T>& entries, Node node, Less less) {
   // Buckets are worth it when node ids are dense: at most a few per entry.
