@@ -44,8 +44,8 @@ std::optional<std::string> shrink(WeaveState& state, WeaveContext& ctx, const St
   std::vector<NodeId> order;
   // The strip positions holding each side node (entry or entry + 3), grouped per node in
   // strip order: node m's are steps[start[slot[m]] .. start[slot[m] + 1]), slot[m] being m's
-  // index in `order` before it is sorted. Built once per strip, so that a blind chord tried at
-  // every side node does not scan the whole strip for each.
+  // index in `order` before it is sorted. Built at most once per strip (when first read), so
+  // that a blind chord tried at every side node does not scan the whole strip for each.
   std::vector<std::uint32_t> slot, start, steps, cursor;
   std::vector<NodeId> by_valence_buffer;
   std::vector<std::uint32_t> by_valence_count;
@@ -110,12 +110,8 @@ std::optional<std::string> shrink(WeaveState& state, WeaveContext& ctx, const St
     };
     std::string reasons;
     bool applied = false;
-    bool sorted = false;
     for (std::size_t idx = 0; idx == 0 || idx < order.size(); ++idx) {
-      if (idx == 1 && !sorted) {
-        stable_sort_by_valence(front, order, 1, by_valence_buffer, by_valence_count);
-        sorted = true;
-      }
+      if (idx == 1) stable_sort_by_valence(front, order, 1, by_valence_buffer, by_valence_count);
       const NodeId v = idx == 0 ? first : order[idx];
       std::string why;
       const std::size_t k = front.valence(v);
