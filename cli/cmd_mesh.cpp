@@ -80,6 +80,7 @@ nlohmann::json self_crossing_json(const primal::SelfCrossingReport& s) {
           {"front_pillows", s.front_pillows},
           {"filled", s.filled},
           {"reliable_fallback", s.reliable_fallback},
+          {"after_block", s.after_block},
           {"seconds",
            {{"search", s.search_seconds}, {"weave", s.weave_seconds}, {"join", s.join_seconds}}}};
 }
@@ -422,6 +423,18 @@ int run_mesh(const MeshArgs& a) {
         std::cout << "; first after " << r.woven.recoveries.front().hexes_before << " hexes";
       std::cout << ")\n";
     }
+    if (!r.self_crossing.after_block.empty()) {
+      const primal::SelfCrossingReport& x = r.self_crossing;
+      std::string way = "the weave of the front with its nodes fixed";
+      if (x.filled) {
+        way = "the fill by front moves alone";
+      } else if (x.free_nodes) {
+        way = "the weave with up to " + std::to_string(options.self_crossing.recovery_pillows) +
+              " recovery pillows (" + std::to_string(x.front_pillows) + " used)";
+      }
+      std::cout << "rescue     the weave blocked even with the block recovery; woven instead by "
+                << way << (x.reliable_fallback ? " with the reliable rules" : "") << "\n";
+    }
     std::cout << "valence    at most " << valence.max_hexes_at_interior_edge
               << " hexes around an interior edge (" << valence.interior_edges_over_4
               << " edges over 4), at most " << valence.max_hexes_at_interior_node
@@ -517,7 +530,8 @@ Action add_mesh_command(CLI::App& app) {
                 "(scaled Jacobian <= 0) after untangling");
   sub->add_flag("--no-loop-moves", args->no_loop_moves,
                 "refuse surfaces whose loops cross themselves (exit code 2) instead of attaching "
-                "hexes until they do not");
+                "hexes until they do not, and do not rescue a loop-clean surface whose weave "
+                "blocks with the ways of that stage");
   sub->add_option("--front-on-failure", args->front_on_failure,
                   "where the front goes when the search for loop moves gives up (default: "
                   "OUT.front.obj)");

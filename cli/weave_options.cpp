@@ -69,7 +69,8 @@ void add_weave_options(CLI::App* sub, WeaveArgs& args) {
       ->group(group);
   sub->add_option("--block-recovery", args.block_recovery,
                   "when every loop is blocked: auto (pillow blocked front faces and weave on, a "
-                  "bounded search; docs/weave-recovery.md) or off (the block is an error, exit 3)")
+                  "bounded search; then, for mesh, the other ways of the front-move stage; "
+                  "docs/weave-recovery.md) or off (the block is an error, exit 3)")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "off"}))
       ->group(group);

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <optional>
+#include <string>
 #include <utility>
 
 #include "position_pinch.hpp"
@@ -79,7 +80,27 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
     r.woven = weave_self_crossing(r.surface, options.weave, angles, options.self_crossing,
                                   r.self_crossing);
   } else if (whole) {
-    r.woven = weave::weave(r.surface.surface, options.weave, angles);
+    try {
+      r.woven = weave::weave(r.surface.surface, options.weave, angles);
+    } catch (const WeaveError& blocked) {
+      // A loop-clean shell whose weave blocked even with the block recovery: the other ways
+      // of the front-move stage (the fill by moves of a small front, the weave with recovery
+      // pillows of blocked valence-2 nodes, the weave of a fixed front; docs/weave-recovery.md
+      // "Rescue"). Not with --block-recovery off, which asks for the first block alone, nor
+      // with a rule budget of the caller's (--max-rules), which the rescue would not keep.
+      if (!options.self_crossing_moves ||
+          options.weave.block_recovery == weave::BlockRecovery::Off || options.weave.max_rules != 0)
+        throw;
+      SelfCrossingOptions rescue = options.self_crossing;
+      rescue.plain_weave_blocked = true;
+      try {
+        r.woven = weave_self_crossing(r.surface, options.weave, angles, rescue, r.self_crossing);
+      } catch (const WeaveError& again) {
+        throw WeaveError(std::string(blocked.what()) + "\n  rescue by the ways of the front-move " +
+                         "stage: " + again.what());
+      }
+      r.self_crossing.after_block = blocked.what();
+    }
   } else {
     r.woven = weave_solids(r.surface, options.weave, options.cut, &r.solids);
   }

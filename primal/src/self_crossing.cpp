@@ -342,14 +342,23 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
   // earlier way); otherwise the first way that succeeds.
   const std::size_t first_pillows = weave_options.recovery_pillows;
   const std::size_t most = std::max(first_pillows, options.recovery_pillows);
+  // With no hex attached, the first way is the plain weave of the surface: not run again
+  // under the caller's rules when the caller has seen it block.
+  const bool plain_seen = options.plain_weave_blocked && moves.moves.empty();
   std::vector<std::function<std::optional<weave::WeaveResult>()>> ways;
-  if (moves.simple || options.weave_unsimple)
-    ways.emplace_back([&] { return weave_free(first_pillows); });
-  ways.emplace_back(fill);
-  if ((moves.simple || options.weave_unsimple) && most > first_pillows)
-    ways.emplace_back([&] { return weave_free(most); });
-  if (moves.simple) ways.emplace_back(weave_fixed);
-  if (moves.simple && options.always_pillow) ways = {weave_fixed};
+  const auto list_ways = [&](bool skip_plain) {
+    ways.clear();
+    const bool free_weaves = options.free_nodes && (moves.simple || options.weave_unsimple);
+    if (free_weaves && !skip_plain) ways.emplace_back([&] { return weave_free(first_pillows); });
+    ways.emplace_back(fill);
+    if (free_weaves && most > first_pillows) ways.emplace_back([&] { return weave_free(most); });
+    // With no hex attached, the weave of the fixed front is a free weave with `most` pillows.
+    const bool fixed_is_free =
+        moves.moves.empty() && free_weaves && (most > first_pillows || !skip_plain);
+    if (moves.simple && !fixed_is_free) ways.emplace_back(weave_fixed);
+    if (moves.simple && options.always_pillow) ways = {weave_fixed};
+  };
+  list_ways(plain_seen);
   const bool best_of = moves.front.quads.size() <= options.fill_up_to;
   const SelfCrossingReport base = report;
   const auto keep_totals = [&](SelfCrossingReport& into) {
@@ -381,6 +390,7 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
     weave_options.rules = weave::RuleSet::Reliable;
     weave_options.selection = nullptr;
     report.weave_failure += "; then with the reliable rules: ";
+    list_ways(false);
     run_ways(true);
   }
   if (best) {
@@ -390,6 +400,14 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
   }
   if (!moves.simple)
     throw give_up(moves, "the search for front moves gave up (" + moves.stop_reason + ")");
+  if (moves.self_crossing_quads_before == 0 && moves.moves.empty()) {
+    // A loop-clean surface (the rescue of a blocked weave): no move was needed or made.
+    throw WeaveError(
+        "the loops are simple, and every other way to weave the surface blocked "
+        "too (" +
+        report.weave_failure.substr(0, 900) + (report.weave_failure.size() > 900 ? " ..." : "") +
+        "): a defect of the weaver, please report the input");
+  }
   throw give_up(moves, "the loops are simple after " + std::to_string(moves.moves.size()) +
                            " attached hexes, but every weave of the front blocked");
 }

@@ -2,16 +2,19 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 
 #include "stcweave/primal/diagnose.hpp"
+#include "stcweave/primal/edge_angles.hpp"
 #include "stcweave/primal/pipeline.hpp"
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/stc/loops.hpp"
 #include "stcweave/stc/validate.hpp"
 #include "support/quadrangulations.hpp"
 #include "support/shapes.hpp"
+#include "weave/sphere_enum.hpp"
 
 namespace stcweave::primal {
 namespace {
@@ -141,6 +144,178 @@ TEST(SelfCrossing, SurfacesWithSimpleLoopsDoNotGoThroughTheMoves) {
   const MeshResult r = mesh_file(file_of(test::box_surface(2, 1, 1), "box"));
   EXPECT_FALSE(r.self_crossing.used);
   EXPECT_EQ(r.mesh.complex.hexes.size(), 2U);
+}
+
+/// The loop-clean 18-quad shapes of the sphere closure (tests/weave/sphere_enum.hpp), in the
+/// closure's order.
+std::vector<stc::QuadSurface> loop_clean_eighteen() {
+  auto closure = test::sphere_closure(18);
+  std::vector<stc::QuadSurface> clean;
+  for (stc::QuadSurface& s : closure.at(18))
+    if (stc::find_loops(s).num_self_intersecting() == 0) clean.push_back(std::move(s));
+  return clean;
+}
+
+/// `s` placed on the unit sphere: a Tutte embedding in the plane with quad 0 as the outer
+/// square, lifted by inverse stereographic projection, mirrored when that would make the
+/// pipeline re-orient the quads (so that the pipeline weaves `s` itself, not its mirror).
+SurfaceMesh on_sphere(const stc::QuadSurface& s) {
+  const auto n = static_cast<Eigen::Index>(s.num_nodes);
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n);
+  Eigen::MatrixXd b = Eigen::MatrixXd::Zero(n, 2);
+  const stc::Quad& outer = s.quads.front();
+  const std::array<std::array<double, 2>, 4> square{{{3, 3}, {-3, 3}, {-3, -3}, {3, -3}}};
+  std::vector<bool> fixed(s.num_nodes, false);
+  for (std::size_t i = 0; i < 4; ++i) {
+    const auto v = static_cast<Eigen::Index>(outer[i].index());
+    fixed[outer[i].index()] = true;
+    a(v, v) = 1.0;
+    b(v, 0) = square[i][0];
+    b(v, 1) = square[i][1];
+  }
+  for (const stc::Quad& q : s.quads) {
+    for (std::size_t i = 0; i < 4; ++i) {
+      const std::size_t u = q[i].index(), w = q[(i + 1) % 4].index();
+      // Each edge is in two quads: each direction once, so each end gets each neighbour once.
+      if (!fixed[u]) {
+        a(static_cast<Eigen::Index>(u), static_cast<Eigen::Index>(u)) += 1.0;
+        a(static_cast<Eigen::Index>(u), static_cast<Eigen::Index>(w)) -= 1.0;
+      }
+    }
+  }
+  const Eigen::MatrixXd xy = a.fullPivLu().solve(b);
+  SurfaceMesh m;
+  m.surface = s;
+  m.points.resize(n, 3);
+  for (Eigen::Index v = 0; v < n; ++v) {
+    const double x = xy(v, 0), y = xy(v, 1), r2 = x * x + y * y;
+    m.points.row(v) << 2 * x / (r2 + 1), 2 * y / (r2 + 1), (r2 - 1) / (r2 + 1);
+  }
+  SurfaceMesh copy = m;
+  if (orient_outward(copy).flipped_quads > 0) m.points.col(2) *= -1.0;
+  return m;
+}
+
+// A loop-clean sphere whose weave blocks even with the block recovery (a defect of the weaver,
+// docs/weave-recovery.md) is woven by the other ways of the front-move stage: the pipeline
+// says so in its report, the complex is certified against the input, and the outcome repeats.
+// Shape 67 of the loop-clean 18-quad shapes blocks under reliable (checked below, so that a
+// change of the enumeration or of the weaver shows here instead of passing vacuously).
+TEST(SelfCrossing, PipelineRescuesALoopCleanSphereWhoseWeaveBlocks) {
+  const std::vector<stc::QuadSurface> clean = loop_clean_eighteen();
+  ASSERT_EQ(clean.size(), 95U);
+  const SurfaceMesh mesh = on_sphere(clean[67]);
+  SurfaceMesh oriented = mesh;
+  ASSERT_EQ(orient_outward(oriented).flipped_quads, 0U);
+  weave::WeaveOptions plain;
+  plain.rules = weave::RuleSet::Reliable;
+  ASSERT_THROW((void)weave::weave(mesh.surface, plain), WeaveError)
+      << "the weave no longer blocks here: pick another blocked loop-clean surface";
+
+  MeshOptions options;
+  options.weave.rules = weave::RuleSet::Reliable;
+  options.untangle = false;  // the rescue is the weave's; untangling these hexes takes 20 s
+  const MeshResult r = mesh_file(file_of(mesh, "blocked"), options);
+  EXPECT_TRUE(r.validation.valid) << r.validation.summary();
+  EXPECT_TRUE(r.self_crossing.used);
+  EXPECT_NE(r.self_crossing.after_block.find("block"), std::string::npos)
+      << r.self_crossing.after_block;
+  EXPECT_EQ(r.self_crossing.attached_hexes,
+            r.self_crossing.filled ? r.woven.complex.hexes.size() : 0U);
+  const stc::ValidationReport v = stc::validate_hex_complex(r.woven.complex, &mesh.surface);
+  EXPECT_TRUE(v.valid) << v.summary();
+  std::cout << "rescued: " << r.woven.complex.hexes.size() << " hexes"
+            << (r.self_crossing.filled ? " (filled by moves)" : "") << "\n";
+  const MeshResult again = mesh_file(file_of(mesh, "blocked"), options);
+  EXPECT_EQ(again.mesh.complex.hexes, r.mesh.complex.hexes);
+
+  // Off: the first block alone, as the user asked; so without the front-move stage.
+  MeshOptions off = options;
+  off.weave.block_recovery = weave::BlockRecovery::Off;
+  EXPECT_THROW((void)mesh_file(file_of(mesh, "blocked"), off), WeaveError);
+  MeshOptions no_moves = options;
+  no_moves.self_crossing_moves = false;
+  EXPECT_THROW((void)mesh_file(file_of(mesh, "blocked"), no_moves), WeaveError);
+  // A rule budget of the caller's is kept: no rescue (the fill by moves would not keep it).
+  MeshOptions budget = options;
+  budget.weave.max_rules = 100000;
+  EXPECT_THROW((void)mesh_file(file_of(mesh, "blocked"), budget), WeaveError);
+}
+
+// The two loop-clean 18-quad shapes of the sphere closure that stay blocked with the block
+// recovery (tests/weave/complete_test.cpp pins them: 67 under reliable, 91 under extended, in
+// the closure's order) are woven by the stage's ways with `plain_weave_blocked`, which skips
+// re-running the weave that blocked.
+TEST(SelfCrossing, StageWeavesTheBlockedEighteenQuadSpheres) {
+  const std::vector<stc::QuadSurface> clean = loop_clean_eighteen();
+  ASSERT_EQ(clean.size(), 95U);
+  for (const auto& [index, rules] :
+       {std::pair{67, weave::RuleSet::Reliable}, std::pair{91, weave::RuleSet::Extended}}) {
+    const stc::QuadSurface& s = clean[static_cast<std::size_t>(index)];
+    weave::WeaveOptions o;
+    o.rules = rules;
+    ASSERT_THROW((void)weave::weave(s, o), WeaveError) << "shape " << index << " no longer blocks";
+    SurfaceMesh m;
+    m.surface = s;
+    m.points = Points::Zero(static_cast<Eigen::Index>(s.num_nodes), 3);
+    SelfCrossingOptions options;
+    options.plain_weave_blocked = true;
+    SelfCrossingReport report;
+    const weave::WeaveResult r = weave_self_crossing(m, o, {}, options, report);
+    const stc::ValidationReport v = stc::validate_hex_complex(r.complex, &s);
+    EXPECT_TRUE(v.valid) << "shape " << index << ": " << v.summary();
+    EXPECT_EQ(r.num_input_nodes, s.num_nodes);
+    EXPECT_EQ(report.attached_hexes, report.filled ? r.complex.hexes.size() : 0U);
+    std::cout << "18 quads, shape " << index << ", " << weave::to_string(rules) << ": "
+              << r.complex.hexes.size() << " hexes"
+              << (report.reliable_fallback ? " (reliable fallback)" : "") << "\n";
+  }
+}
+
+// The same at 20 quads: every loop-clean 20-quad shape of the closure is woven under both rule
+// sets, and the stage takes those the block recovery leaves blocked (pinned counts; each one
+// left is a known defect, docs/weave-recovery.md "Rescue"). Minutes, so only on request.
+TEST(SelfCrossingSlow, StageWeavesTheBlockedTwentyQuadSpheres) {
+  if (std::getenv("STCWEAVE_SLOW_TESTS") == nullptr)
+    GTEST_SKIP() << "set STCWEAVE_SLOW_TESTS=1 to run the 20-quad closure (slow)";
+  auto closure = test::sphere_closure(20);
+  std::vector<stc::QuadSurface> clean;
+  for (stc::QuadSurface& s : closure.at(20))
+    if (stc::find_loops(s).num_self_intersecting() == 0) clean.push_back(std::move(s));
+  ASSERT_EQ(clean.size(), 420U);
+  for (const weave::RuleSet rules : {weave::RuleSet::Reliable, weave::RuleSet::Extended}) {
+    std::size_t blocked = 0, rescued = 0;
+    for (std::size_t i = 0; i < clean.size(); ++i) {
+      weave::WeaveOptions o;
+      o.rules = rules;
+      try {
+        (void)weave::weave(clean[i], o);
+        continue;
+      } catch (const WeaveError&) {
+        ++blocked;
+      }
+      SurfaceMesh m;
+      m.surface = clean[i];
+      m.points = Points::Zero(static_cast<Eigen::Index>(clean[i].num_nodes), 3);
+      SelfCrossingOptions options;
+      options.plain_weave_blocked = true;
+      SelfCrossingReport report;
+      try {
+        const weave::WeaveResult r = weave_self_crossing(m, o, {}, options, report);
+        const stc::ValidationReport v = stc::validate_hex_complex(r.complex, &clean[i]);
+        EXPECT_TRUE(v.valid) << "shape " << i << ": " << v.summary();
+        rescued += v.valid ? 1 : 0;
+        std::cout << "20 quads, shape " << i << ", " << weave::to_string(rules) << ": "
+                  << r.complex.hexes.size() << " hexes" << (report.filled ? " (filled)" : "")
+                  << (report.reliable_fallback ? " (reliable fallback)" : "") << "\n";
+      } catch (const WeaveError& e) {
+        std::cout << "20 quads, shape " << i << ", " << weave::to_string(rules)
+                  << ": not rescued: " << std::string(e.what()).substr(0, 200) << "\n";
+      }
+    }
+    EXPECT_EQ(blocked, 9U) << weave::to_string(rules);
+    EXPECT_EQ(rescued, rules == weave::RuleSet::Reliable ? 8U : 9U) << weave::to_string(rules);
+  }
 }
 
 }  // namespace

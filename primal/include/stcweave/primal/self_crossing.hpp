@@ -55,11 +55,20 @@ struct SelfCrossingOptions {
   /// get by propagation). Measured: pmp/fandisk_quads, whose untangled front blocks every
   /// extended weave, is woven this way (docs/self-intersecting-loops.md).
   bool reliable_fallback = true;
+  /// Set by a caller that has already woven this surface with the same weave options and
+  /// seen it block (`mesh_file`'s rescue of a loop-clean surface): when no hex is attached,
+  /// the first way (that very weave) is not run again.
+  bool plain_weave_blocked = false;
 };
 
 /// What `weave_self_crossing` did.
 struct SelfCrossingReport {
-  bool used = false;  ///< the surface had self-intersecting loops and went through this stage
+  /// The surface went through this stage: it had self-intersecting loops, or its plain weave
+  /// blocked (`after_block`).
+  bool used = false;
+  /// When the stage rescued a loop-clean surface whose weave blocked even with the block
+  /// recovery (`mesh_file`), why that weave blocked (as the `WeaveError` said it); else empty.
+  std::string after_block;
   stc::LoopMoveResult moves;
   std::size_t attached_hexes = 0;
   std::size_t pillow_hexes = 0;  ///< 0 unless the join needed the pillow layer
