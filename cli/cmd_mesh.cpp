@@ -79,6 +79,7 @@ nlohmann::json self_crossing_json(const primal::SelfCrossingReport& s) {
           {"free_nodes", s.free_nodes},
           {"front_pillows", s.front_pillows},
           {"filled", s.filled},
+          {"fill_residual", s.fill_residual},
           {"reliable_fallback", s.reliable_fallback},
           {"after_block", s.after_block},
           {"seconds",
@@ -428,6 +429,9 @@ int run_mesh(const MeshArgs& a) {
       std::string way = "the weave of the front with its nodes fixed";
       if (x.filled) {
         way = "the fill by front moves alone";
+      } else if (x.fill_residual > 0) {
+        way = "the fill by front moves, the " + std::to_string(x.fill_residual) +
+              "-face front it left meshed apart";
       } else if (x.free_nodes) {
         way = "the weave with up to " + std::to_string(options.self_crossing.recovery_pillows) +
               " recovery pillows (" + std::to_string(x.front_pillows) + " used)";

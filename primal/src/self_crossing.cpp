@@ -144,32 +144,6 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
                       "; raise the search bounds (--loop-moves-*) or re-mesh the surface so that "
                       "fewer loops cross themselves");
   };
-  // Fills the front by moves alone: the whole complex is the attached hexes.
-  bool fill_tried = false;
-  const auto fill = [&]() -> std::optional<weave::WeaveResult> {
-    if (fill_tried || moves.front.quads.size() > options.fill_up_to) return std::nullopt;
-    fill_tried = true;
-    const auto t_fill = std::chrono::steady_clock::now();
-    stc::LoopMoveResult filled = stc::fill_front(moves, options.search);
-    report.search_seconds += seconds_since(t_fill);
-    if (!filled.simple) return std::nullopt;
-    weave::WeaveResult r;
-    r.num_input_nodes = filled.num_input_nodes;
-    r.complex = filled.hexes;
-    r.hex_rule.assign(r.complex.hexes.size(), "attached");
-    r.hex_shrink.assign(r.complex.hexes.size(), -1);
-    const stc::ValidationReport check = stc::validate_hex_complex(r.complex, &surface.surface);
-    if (!check.valid) {
-      throw InternalError("self-intersecting loops: the " + std::to_string(r.complex.hexes.size()) +
-                          " hexes that fill the front are not a valid complex (" + check.summary() +
-                          "); please report this surface");
-    }
-    r.dual = rebuild_dual(r.complex, surface.surface);
-    report.moves = std::move(filled);
-    report.attached_hexes = r.complex.hexes.size();
-    report.filled = true;
-    return r;
-  };
   // The weave of the front with the attached hexes known to the weaver: their nodes are free
   // (mergeable) interior nodes, and its seams see the hexes behind every front face.
   const auto weave_free = [&](std::size_t pillows) -> std::optional<weave::WeaveResult> {
@@ -213,11 +187,12 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
   };
   // The weave of the front with every front node fixed (the attached hexes unknown to the
   // weaver), joined directly or through a pillow layer.
-  const auto weave_fixed = [&]() -> std::optional<weave::WeaveResult> {
+  const auto weave_fixed_on = [&](const stc::LoopMoveResult& base_moves,
+                                  bool residual) -> std::optional<weave::WeaveResult> {
     // The front with compact node ids (all of them "input" nodes for the weaver).
     t = std::chrono::steady_clock::now();
     std::vector<NodeId> front_nodes;
-    for (const stc::Quad& q : moves.front.quads)
+    for (const stc::Quad& q : base_moves.front.quads)
       front_nodes.insert(front_nodes.end(), q.begin(), q.end());
     std::sort(front_nodes.begin(), front_nodes.end());
     front_nodes.erase(std::unique(front_nodes.begin(), front_nodes.end()), front_nodes.end());
@@ -226,7 +201,7 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
       compact.emplace(front_nodes[i].value(), NodeId(i));
     stc::QuadSurface front;
     front.num_nodes = front_nodes.size();
-    for (const stc::Quad& q : moves.front.quads) {
+    for (const stc::Quad& q : base_moves.front.quads) {
       stc::Quad c{};
       for (std::size_t i = 0; i < 4; ++i) c[i] = compact.at(q[i].value());
       front.quads.push_back(c);
@@ -247,10 +222,11 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
           const auto it = directed.find(key(front.quads[q][(i + 1) % 4], front.quads[q][i]));
           const std::size_t o = it == directed.end() ? q : it->second;
           double a = 180.0;
-          if (moves.front_input[q] >= 0 && moves.front_input[o] >= 0) {
+          if (base_moves.front_input[q] >= 0 && base_moves.front_input[o] >= 0) {
             // An untouched input quad keeps its node order, so its side i is the input's.
-            a = side_angles[static_cast<std::size_t>(moves.front_input[q])][i];
-          } else if (moves.front_hex[q] >= 0 && moves.front_hex[q] == moves.front_hex[o]) {
+            a = side_angles[static_cast<std::size_t>(base_moves.front_input[q])][i];
+          } else if (base_moves.front_hex[q] >= 0 &&
+                     base_moves.front_hex[q] == base_moves.front_hex[o]) {
             a = 270.0;  // two faces of one attached hex: the hex fills a right angle there
           }
           angles[q][i] = a;
@@ -262,7 +238,19 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
       weave::WeaveOptions fixed_options = weave_options;
       fixed_options.recovery_pillows =
           std::max(fixed_options.recovery_pillows, options.recovery_pillows);
-      woven = weave::weave(front, fixed_options, angles);
+      if (residual) {
+        // The front a stalled fill left: meshed by this stage as a surface of its own.
+        SelfCrossingOptions inner = options;
+        inner.plain_weave_blocked = false;
+        inner.fill_residual_depth = options.fill_residual_depth - 1;
+        inner.front_on_failure.clear();
+        SelfCrossingReport inner_report;
+        const SurfaceMesh residual_mesh{Points::Zero(static_cast<Eigen::Index>(front.num_nodes), 3),
+                                        front};
+        woven = weave_self_crossing(residual_mesh, fixed_options, angles, inner, inner_report);
+      } else {
+        woven = weave::weave(front, fixed_options, angles);
+      }
     } catch (const WeaveError& e) {
       report.weave_failure +=
           (report.weave_failure.empty() ? "" : "; with every front node fixed: ") +
@@ -276,11 +264,11 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
     // Join: attached hexes + woven hexes, woven nodes mapped back.
     t = std::chrono::steady_clock::now();
     const std::size_t m = front_nodes.size();
-    const std::size_t base = moves.hexes.num_nodes;
+    const std::size_t base = base_moves.hexes.num_nodes;
     const auto join = [&](bool pillow) {
       weave::WeaveResult r;
-      r.num_input_nodes = moves.num_input_nodes;
-      r.complex.hexes = moves.hexes.hexes;
+      r.num_input_nodes = base_moves.num_input_nodes;
+      r.complex.hexes = base_moves.hexes.hexes;
       r.hex_rule.assign(r.complex.hexes.size(), "attached");
       r.hex_shrink.assign(r.complex.hexes.size(), -1);
       const auto woven_node = [&](NodeId v) {
@@ -288,7 +276,7 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
         return v.index() < m ? front_nodes[v.index()] : NodeId(base + (v.index() - m));
       };
       if (pillow) {
-        for (const stc::Quad& q : moves.front.quads) {
+        for (const stc::Quad& q : base_moves.front.quads) {
           const auto star = [&](NodeId v) { return NodeId(base + compact.at(v.value()).index()); };
           r.complex.hexes.push_back(
               {q[0], q[3], q[2], q[1], star(q[0]), star(q[3]), star(q[2]), star(q[1])});
@@ -313,7 +301,7 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
     stc::ValidationReport check = stc::validate_hex_complex(result.complex, &surface.surface);
     if (options.always_pillow && check.valid) {
       report.pillowed = true;
-      report.pillow_hexes = moves.front.quads.size();
+      report.pillow_hexes = base_moves.front.quads.size();
     }
     if (!check.valid) {
       report.direct_join_violation = check.summary();
@@ -329,11 +317,45 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
                             "); please report this surface");
       }
       report.pillowed = true;
-      report.pillow_hexes = moves.front.quads.size();
+      report.pillow_hexes = base_moves.front.quads.size();
     }
     result.dual = rebuild_dual(result.complex, surface.surface);
     report.join_seconds += seconds_since(t);
     return result;
+  };
+  const auto weave_fixed = [&] { return weave_fixed_on(moves, false); };
+  // Fills the front by moves alone: the whole complex is the attached hexes.
+  bool fill_tried = false;
+  // A fill that stalled on a small even front, kept for the last way (below).
+  std::optional<stc::LoopMoveResult> stalled;
+  const auto fill = [&]() -> std::optional<weave::WeaveResult> {
+    if (fill_tried || moves.front.quads.size() > options.fill_up_to) return std::nullopt;
+    fill_tried = true;
+    const auto t_fill = std::chrono::steady_clock::now();
+    stc::LoopMoveResult filled = stc::fill_front(moves, options.search);
+    report.search_seconds += seconds_since(t_fill);
+    if (!filled.simple) {
+      const std::size_t left = filled.front.quads.size();
+      if (left <= options.fill_residual_up_to && left < moves.front.quads.size() && left % 2 == 0)
+        stalled = std::move(filled);
+      return std::nullopt;
+    }
+    weave::WeaveResult r;
+    r.num_input_nodes = filled.num_input_nodes;
+    r.complex = filled.hexes;
+    r.hex_rule.assign(r.complex.hexes.size(), "attached");
+    r.hex_shrink.assign(r.complex.hexes.size(), -1);
+    const stc::ValidationReport check = stc::validate_hex_complex(r.complex, &surface.surface);
+    if (!check.valid) {
+      throw InternalError("self-intersecting loops: the " + std::to_string(r.complex.hexes.size()) +
+                          " hexes that fill the front are not a valid complex (" + check.summary() +
+                          "); please report this surface");
+    }
+    r.dual = rebuild_dual(r.complex, surface.surface);
+    report.moves = std::move(filled);
+    report.attached_hexes = r.complex.hexes.size();
+    report.filled = true;
+    return r;
   };
 
   // The ways, in order: the free weave without recovery pillows, the fill by moves (small
@@ -392,6 +414,26 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
     report.weave_failure += "; then with the reliable rules: ";
     list_ways(false);
     run_ways(true);
+  }
+  if (!best && stalled && options.fill_residual_depth > 0) {
+    // Last, when every way failed: the front a stalled fill left, meshed by this stage as a
+    // surface of its own (its nodes fixed) and joined to the fill's hexes.
+    weave_options = caller_weave_options;
+    SelfCrossingReport fresh = base;
+    keep_totals(fresh);
+    report = std::move(fresh);
+    std::optional<weave::WeaveResult> r;
+    try {
+      r = weave_fixed_on(*stalled, true);
+    } catch (const InvalidInput& e) {
+      report.weave_failure += std::string("; the front the fill left: ") + e.what();
+    }
+    if (r) {
+      report.attached_hexes = stalled->hexes.hexes.size();
+      report.fill_residual = stalled->front.quads.size();
+      report.moves = std::move(*stalled);
+      best.emplace(std::move(*r), report);
+    }
   }
   if (best) {
     keep_totals(best->second);

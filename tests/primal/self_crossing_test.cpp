@@ -80,9 +80,10 @@ TEST(SelfCrossing, GeneratedSpheresGiveCertifiedComplexesOrCleanRefusals) {
             << " odd ones refused\n";
   EXPECT_GT(even, 20U);
   EXPECT_GT(odd_refused, 20U);
-  // Measured: 38 of 40 (1 of 40 before the weave of the front had recovery pillows and free
-  // nodes; docs/self-intersecting-loops.md); a regression lowers it.
-  EXPECT_GE(valid, 38U);
+  // Measured: 39 of 40 (38 before a stalled fill's front was meshed apart, 1 of 40 before the
+  // weave of the front had recovery pillows and free nodes; docs/self-intersecting-loops.md);
+  // a regression lowers it.
+  EXPECT_GE(valid, 39U);
 }
 
 TEST(SelfCrossing, WhenTheSearchGivesUpTheFrontIsWrittenAndTheErrorSaysWhy) {
@@ -220,8 +221,16 @@ TEST(SelfCrossing, PipelineRescuesALoopCleanSphereWhoseWeaveBlocks) {
   EXPECT_TRUE(r.self_crossing.used);
   EXPECT_NE(r.self_crossing.after_block.find("block"), std::string::npos)
       << r.self_crossing.after_block;
-  EXPECT_EQ(r.self_crossing.attached_hexes,
-            r.self_crossing.filled ? r.woven.complex.hexes.size() : 0U);
+  // Filled: every hex attached; a stalled fill whose front was meshed apart: some; else none.
+  const std::size_t total = r.woven.complex.hexes.size(), attached = r.self_crossing.attached_hexes;
+  if (r.self_crossing.filled) {
+    EXPECT_EQ(attached, total);
+  } else if (r.self_crossing.fill_residual > 0) {
+    EXPECT_GT(attached, 0U);
+    EXPECT_LT(attached, total);
+  } else {
+    EXPECT_EQ(attached, 0U);
+  }
   const stc::ValidationReport v = stc::validate_hex_complex(r.woven.complex, &mesh.surface);
   EXPECT_TRUE(v.valid) << v.summary();
   std::cout << "rescued: " << r.woven.complex.hexes.size() << " hexes"
@@ -265,9 +274,19 @@ TEST(SelfCrossing, StageWeavesTheBlockedEighteenQuadSpheres) {
     const stc::ValidationReport v = stc::validate_hex_complex(r.complex, &s);
     EXPECT_TRUE(v.valid) << "shape " << index << ": " << v.summary();
     EXPECT_EQ(r.num_input_nodes, s.num_nodes);
-    EXPECT_EQ(report.attached_hexes, report.filled ? r.complex.hexes.size() : 0U);
+    if (report.filled) {
+      EXPECT_EQ(report.attached_hexes, r.complex.hexes.size());
+    } else if (report.fill_residual > 0) {
+      EXPECT_GT(report.attached_hexes, 0U);
+      EXPECT_LT(report.attached_hexes, r.complex.hexes.size());
+    } else {
+      EXPECT_EQ(report.attached_hexes, 0U);
+    }
     std::cout << "18 quads, shape " << index << ", " << weave::to_string(rules) << ": "
               << r.complex.hexes.size() << " hexes"
+              << (report.fill_residual > 0 ? " (filled to " + std::to_string(report.fill_residual) +
+                                                 " faces, meshed apart)"
+                                           : std::string())
               << (report.reliable_fallback ? " (reliable fallback)" : "") << "\n";
   }
 }
@@ -307,6 +326,7 @@ TEST(SelfCrossingSlow, StageWeavesTheBlockedTwentyQuadSpheres) {
         rescued += v.valid ? 1 : 0;
         std::cout << "20 quads, shape " << i << ", " << weave::to_string(rules) << ": "
                   << r.complex.hexes.size() << " hexes" << (report.filled ? " (filled)" : "")
+                  << (report.fill_residual > 0 ? " (residual front meshed apart)" : "")
                   << (report.reliable_fallback ? " (reliable fallback)" : "") << "\n";
       } catch (const WeaveError& e) {
         std::cout << "20 quads, shape " << i << ", " << weave::to_string(rules)
@@ -314,7 +334,8 @@ TEST(SelfCrossingSlow, StageWeavesTheBlockedTwentyQuadSpheres) {
       }
     }
     EXPECT_EQ(blocked, 9U) << weave::to_string(rules);
-    EXPECT_EQ(rescued, rules == weave::RuleSet::Reliable ? 8U : 9U) << weave::to_string(rules);
+    // 8 under reliable before the fill's residual front was meshed apart (shape 168).
+    EXPECT_EQ(rescued, 9U) << weave::to_string(rules);
   }
 }
 
