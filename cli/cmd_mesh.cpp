@@ -433,8 +433,8 @@ int run_mesh(const MeshArgs& a) {
         way = "the fill by front moves, the " + std::to_string(x.fill_residual) +
               "-face front it left meshed apart";
       } else if (x.free_nodes) {
-        way = "the weave with up to " + std::to_string(options.self_crossing.recovery_pillows) +
-              " recovery pillows (" + std::to_string(x.front_pillows) + " used)";
+        way = "the weave with recovery pillows of blocked nodes (" +
+              std::to_string(x.front_pillows) + " used)";
       }
       std::cout << "rescue     the weave blocked even with the block recovery; woven instead by "
                 << way << (x.reliable_fallback ? " with the reliable rules" : "") << "\n";

@@ -85,9 +85,10 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
     } catch (const WeaveError& blocked) {
       // A loop-clean shell whose weave blocked even with the block recovery: the other ways
       // of the front-move stage (the fill by moves of a small front, the weave with recovery
-      // pillows of blocked valence-2 nodes, the weave of a fixed front; docs/weave-recovery.md
-      // "Rescue"). Not with --block-recovery off, which asks for the first block alone, nor
-      // with a rule budget of the caller's (--max-rules), which the rescue would not keep.
+      // pillows of blocked valence-2 nodes, the reliable rules, last the front a stalled fill
+      // left; docs/weave-recovery.md "Rescue"). Not with --block-recovery off, which asks for the
+      // first block alone, nor with a rule budget of the caller's (--max-rules), which the rescue
+      // would not keep.
       if (!options.self_crossing_moves ||
           options.weave.block_recovery == weave::BlockRecovery::Off || options.weave.max_rules != 0)
         throw;

@@ -149,11 +149,14 @@ TEST(SelfCrossing, SurfacesWithSimpleLoopsDoNotGoThroughTheMoves) {
 
 /// The loop-clean 18-quad shapes of the sphere closure (tests/weave/sphere_enum.hpp), in the
 /// closure's order.
-std::vector<stc::QuadSurface> loop_clean_eighteen() {
-  auto closure = test::sphere_closure(18);
-  std::vector<stc::QuadSurface> clean;
-  for (stc::QuadSurface& s : closure.at(18))
-    if (stc::find_loops(s).num_self_intersecting() == 0) clean.push_back(std::move(s));
+const std::vector<stc::QuadSurface>& loop_clean_eighteen() {
+  static const std::vector<stc::QuadSurface> clean = [] {
+    auto closure = test::sphere_closure(18);
+    std::vector<stc::QuadSurface> out;
+    for (stc::QuadSurface& s : closure.at(18))
+      if (stc::find_loops(s).num_self_intersecting() == 0) out.push_back(std::move(s));
+    return out;
+  }();
   return clean;
 }
 
@@ -203,7 +206,7 @@ SurfaceMesh on_sphere(const stc::QuadSurface& s) {
 // Shape 67 of the loop-clean 18-quad shapes blocks under reliable (checked below, so that a
 // change of the enumeration or of the weaver shows here instead of passing vacuously).
 TEST(SelfCrossing, PipelineRescuesALoopCleanSphereWhoseWeaveBlocks) {
-  const std::vector<stc::QuadSurface> clean = loop_clean_eighteen();
+  const std::vector<stc::QuadSurface>& clean = loop_clean_eighteen();
   ASSERT_EQ(clean.size(), 95U);
   const SurfaceMesh mesh = on_sphere(clean[67]);
   SurfaceMesh oriented = mesh;
@@ -249,6 +252,21 @@ TEST(SelfCrossing, PipelineRescuesALoopCleanSphereWhoseWeaveBlocks) {
   MeshOptions budget = options;
   budget.weave.max_rules = 100000;
   EXPECT_THROW((void)mesh_file(file_of(mesh, "blocked"), budget), WeaveError);
+  // Every way of the rescue blocking too (no fill, no recovery pillows: the one way left is
+  // the weave that blocked): the error gives the first block, then the rescue's failure.
+  MeshOptions none = options;
+  none.self_crossing.fill_up_to = 0;
+  none.self_crossing.recovery_pillows = 0;
+  try {
+    (void)mesh_file(file_of(mesh, "blocked"), none);
+    ADD_FAILURE() << "the rescue completed without any of its ways";
+  } catch (const WeaveError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.find("weave: "), 0U) << what;
+    EXPECT_NE(what.find("rescue by the ways of the front-move stage"), std::string::npos) << what;
+    EXPECT_NE(what.find("every other way to weave the surface blocked too"), std::string::npos)
+        << what;
+  }
 }
 
 // The two loop-clean 18-quad shapes of the sphere closure that stay blocked with the block
@@ -256,7 +274,7 @@ TEST(SelfCrossing, PipelineRescuesALoopCleanSphereWhoseWeaveBlocks) {
 // the closure's order) are woven by the stage's ways with `plain_weave_blocked`, which skips
 // re-running the weave that blocked.
 TEST(SelfCrossing, StageWeavesTheBlockedEighteenQuadSpheres) {
-  const std::vector<stc::QuadSurface> clean = loop_clean_eighteen();
+  const std::vector<stc::QuadSurface>& clean = loop_clean_eighteen();
   ASSERT_EQ(clean.size(), 95U);
   for (const auto& [index, rules] :
        {std::pair{67, weave::RuleSet::Reliable}, std::pair{91, weave::RuleSet::Extended}}) {
