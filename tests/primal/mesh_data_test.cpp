@@ -11,6 +11,9 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <system_error>
+
+#include <unistd.h>
 
 #include "stcweave/primal/pipeline.hpp"
 #include "stcweave/primal/quality.hpp"
@@ -29,13 +32,31 @@ std::string slurp(const fs::path& p) {
   return ss.str();
 }
 
-fs::path temp_dir() {
-  const fs::path d =
-      fs::temp_directory_path() /
-      ("stcweave_mesh_data_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
-  fs::create_directories(d);
-  return d;
-}
+/// A folder of its own for the running test, removed with everything in it when the test
+/// ends (named by the test and the process, so that parallel ctest runs do not share it).
+class TempDir {
+ public:
+  TempDir() {
+    std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    std::replace(name.begin(), name.end(), '/', '_');
+    path_ = fs::temp_directory_path() /
+            ("stcweave_mesh_data_" + name + "_" + std::to_string(::getpid()));
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  TempDir(TempDir&&) = delete;
+  TempDir& operator=(TempDir&&) = delete;
+  ~TempDir() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  [[nodiscard]] const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
 
 using test::file_of;
 
@@ -178,7 +199,8 @@ class WriterData : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(WriterData, ReadsBackEveryArray) {
   const auto [mesh, data] = sample();
-  const fs::path dir = temp_dir();
+  const TempDir tmp;
+  const fs::path& dir = tmp.path();
   const std::string ext = GetParam() == "msh2" ? ".msh" : "." + GetParam();
   const fs::path path = dir / ("data_" + GetParam() + ext);
   write_hex_mesh(mesh, data, path, format_from_name(GetParam()));
@@ -212,7 +234,8 @@ INSTANTIATE_TEST_SUITE_P(Formats, WriterData, ::testing::Values("vtk", "vtu", "m
 
 TEST(MeshData, FormatsWithoutDataGetTheMeshAlone) {
   const auto [mesh, data] = sample();
-  const fs::path dir = temp_dir();
+  const TempDir tmp;
+  const fs::path& dir = tmp.path();
   for (const char* ext : {".mesh", ".inp"}) {
     write_hex_mesh(mesh, data, dir / ("with" + std::string(ext)));
     write_hex_mesh(mesh, dir / ("without" + std::string(ext)));
@@ -223,7 +246,8 @@ TEST(MeshData, FormatsWithoutDataGetTheMeshAlone) {
 
 TEST(MeshData, WritersRefuseBadArrays) {
   auto [mesh, data] = sample();
-  const fs::path path = temp_dir() / "bad.vtk";
+  const TempDir tmp;
+  const fs::path path = tmp.path() / "bad.vtk";
   MeshData short_array = data;
   short_array.cells[0].values.pop_back();
   EXPECT_THROW(write_hex_mesh(mesh, short_array, path), InvalidInput);
