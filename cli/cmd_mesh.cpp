@@ -242,6 +242,21 @@ int run_mesh(const MeshArgs& a) {
       std::cerr << "stcweave: weaving: " << p.hexes << " hexes, " << p.front_faces
                 << " front faces left, " << p.loops_shrunk << " loops shrunk\n";
     };
+    // Every untangling round (each can take seconds); the first sweep of the local phases
+    // and every tenth (a sweep is short, and there are up to a hundred).
+    options.position.progress = [](const primal::PositionProgress& p) {
+      using Phase = primal::PositionProgress::Phase;
+      if (p.phase != Phase::Untangle && p.step != 1 && p.step % 10 != 0) return;
+      std::cerr << "stcweave: positioning: " << primal::phase_name(p.phase)
+                << (p.phase == Phase::Untangle ? " round " : " sweep ") << p.step << " of at most "
+                << p.limit << ": " << p.inverted
+                << (p.phase == Phase::Untangle ? " corners" : " hexes") << " inverted";
+      if (p.phase == Phase::Untangle) {
+        std::cerr << ", " << p.iterations << " L-BFGS iterations\n";
+      } else {
+        std::cerr << ", min scaled Jacobian " << p.min_scaled_jacobian << "\n";
+      }
+    };
   }
   const primal::Format out_format = a.output_format == "auto"
                                         ? primal::format_from_path(a.output)
@@ -605,7 +620,9 @@ Action add_mesh_command(CLI::App& app) {
   sub->add_option("--html", args->html,
                   "also write the browser page of the mesh (self-contained HTML, three.js "
                   "inlined): replay of the weave, sheets, quality; see `stcweave view`");
-  sub->add_flag("--progress", args->progress, "print stage and weaving progress on stderr");
+  sub->add_flag("--progress", args->progress,
+                "print stage, weaving and positioning progress on stderr (the default on a "
+                "terminal unless -q)");
   sub->add_flag("-q,--quiet", args->quiet, "print nothing on success");
   return [args] { return run_mesh(*args); };
 }

@@ -166,6 +166,7 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
     if (layer_start) position.start = StartPosition::Auto;
     r.position = position_nodes(r.mesh, position);
     if (woven_mesh && pillow_worth_comparing(r.pillow, options.pillow)) {
+      stage("position without the pillow (to compare)");
       PositionReport unpillowed = position_nodes(*woven_mesh, position);
       const auto candidate = [](const HexMesh& m, const PositionReport& p) {
         return PillowCandidate{p.inverted_after, p.min_scaled_jacobian_after,

@@ -976,6 +976,15 @@ ShapeReport local_shape(HexMesh& mesh, const std::vector<bool>& fixed,
     }
     ++report.sweeps;
     summary(report.min_scaled_jacobian_after, report.mean_scaled_jacobian_after);
+    if (options.progress) {
+      PositionProgress p;
+      p.phase = repair ? PositionProgress::Phase::Repair : PositionProgress::Phase::Shape;
+      p.step = report.sweeps;
+      p.limit = static_cast<std::size_t>(max_sweeps);
+      p.inverted = count_inverted();
+      p.min_scaled_jacobian = report.min_scaled_jacobian_after;
+      options.progress(p);
+    }
     if (repair) {
       if (report.min_scaled_jacobian_after > 0.0) {
         report.stop = "repaired";
@@ -1089,6 +1098,18 @@ RepairReport repair_inverted(HexMesh& mesh, const std::vector<bool>& fixed,
   r.inverted_after = after.inverted;
   r.min_scaled_jacobian_after = after.min_scaled_jacobian;
   return r;
+}
+
+const char* phase_name(PositionProgress::Phase phase) {
+  switch (phase) {
+    case PositionProgress::Phase::Untangle:
+      return "untangle";
+    case PositionProgress::Phase::Repair:
+      return "repair";
+    case PositionProgress::Phase::Shape:
+      return "shape";
+  }
+  return "?";
 }
 
 PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
@@ -1228,6 +1249,15 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
       problem.set_variables(x);
       ++report.outer_iterations;
       std::tie(dmin, bad) = problem.min_determinant();
+      if (options.progress) {
+        PositionProgress p;
+        p.phase = PositionProgress::Phase::Untangle;
+        p.step = report.outer_iterations;
+        p.limit = static_cast<std::size_t>(options.max_outer_iterations);
+        p.inverted = bad;
+        p.iterations = report.iterations;
+        options.progress(p);
+      }
       if (bad < best_bad) {
         best_bad = bad;
         stalled = 0;

@@ -215,6 +215,41 @@ TEST_F(Cli, NewtonStepsAreOptInAndReported) {
   EXPECT_EQ(run(mesh + " --position-newton-steps 0").code, 1);  // out of range: usage error
 }
 
+TEST_F(Cli, ProgressNamesEachUntanglingRound) {
+  // The graded box of NewtonStepsAreOptInAndReported: with --good-start 2 the untangling
+  // rounds run, and --progress prints one line per round (as many as the report counts).
+  const fs::path surface = dir_ / "box.obj", out = dir_ / "out.vtk", report = dir_ / "r.json";
+  ASSERT_EQ(run("generate box 4 4 4 -q -o " + surface.string()).code, 0);
+  {
+    std::istringstream in(slurp(surface));
+    std::ostringstream graded;
+    for (std::string line; std::getline(in, line);) {
+      double x = 0.0, y = 0.0, z = 0.0;
+      if (std::sscanf(line.c_str(), "v %lf %lf %lf", &x, &y, &z) == 3)
+        graded << "v " << x * x / 4.0 << ' ' << y << ' ' << z << '\n';
+      else
+        graded << line << '\n';
+    }
+    std::ofstream(surface) << graded.str();
+  }
+  const CliRun r = run("mesh " + surface.string() + " -o " + out.string() + " --report " +
+                       report.string() + " --good-start 2 --progress");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto rounds = nlohmann::json::parse(slurp(report)).at("position").at("rounds").get<int>();
+  ASSERT_GT(rounds, 0);
+  int lines = 0;
+  for (std::size_t at = r.out.find("stcweave: positioning: untangle round ");
+       at != std::string::npos; at = r.out.find("stcweave: positioning: untangle round ", at + 1))
+    ++lines;
+  EXPECT_EQ(lines, rounds) << r.out;
+  EXPECT_NE(r.out.find("round 1 of at most 100: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" L-BFGS iterations\n"), std::string::npos) << r.out;
+  // Without --progress (and not on a terminal) nothing of it is printed.
+  const CliRun q = run("mesh " + surface.string() + " -o " + out.string() + " --good-start 2");
+  ASSERT_EQ(q.code, 0) << q.out;
+  EXPECT_EQ(q.out.find("positioning:"), std::string::npos) << q.out;
+}
+
 TEST_F(Cli, FailOnInvertedExitsFourAndWritesNoMesh) {
   // The 2x2x2 box with the centre of its top face pushed through the bottom: the interior
   // node cannot be above the bottom centre and below the top one, so hexes stay inverted.

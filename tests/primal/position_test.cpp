@@ -96,6 +96,43 @@ TEST(Position, IsDeterministic) {
   EXPECT_EQ(ra.energy_after, rb.energy_after);
 }
 
+TEST(Position, ProgressIsToldEveryRoundAndChangesNothing) {
+  HexMesh a = test::box_hexes(3, 4, 3);
+  PositionOptions options;
+  options.fixed = test::boundary_nodes(a);
+  test::scramble(a, options.fixed, 0.5, 3);
+  HexMesh b = a;
+  const PositionReport quiet = position_nodes(a, options);
+  std::vector<PositionProgress> told;
+  options.progress = [&told](const PositionProgress& p) { told.push_back(p); };
+  const PositionReport loud = position_nodes(b, options);
+  EXPECT_TRUE(a.points == b.points) << "a progress callback changed the positions";
+  EXPECT_EQ(quiet.iterations, loud.iterations);
+  std::vector<PositionProgress> rounds;
+  for (const PositionProgress& p : told)
+    if (p.phase == PositionProgress::Phase::Untangle) rounds.push_back(p);
+  ASSERT_GT(loud.outer_iterations, 0u) << loud.stop;
+  ASSERT_EQ(rounds.size(), loud.outer_iterations);
+  for (std::size_t i = 0; i < rounds.size(); ++i) {
+    EXPECT_EQ(rounds[i].step, i + 1);
+    EXPECT_EQ(rounds[i].limit, static_cast<std::size_t>(options.max_outer_iterations));
+    if (i > 0) EXPECT_GE(rounds[i].iterations, rounds[i - 1].iterations);
+  }
+  EXPECT_EQ(rounds.back().iterations, loud.iterations);
+  // The last round's count is the report's (no repair: nothing is left inverted).
+  EXPECT_EQ(loud.corners_inverted_after, 0u) << loud.stop;
+  EXPECT_EQ(rounds.back().inverted, loud.corners_inverted_after);
+  // Phases come in order: untangle rounds first, then any local sweeps.
+  bool local = false;
+  for (const PositionProgress& p : told) {
+    if (p.phase != PositionProgress::Phase::Untangle) local = true;
+    if (local) EXPECT_NE(p.phase, PositionProgress::Phase::Untangle);
+  }
+  EXPECT_STREQ(phase_name(PositionProgress::Phase::Untangle), "untangle");
+  EXPECT_STREQ(phase_name(PositionProgress::Phase::Repair), "repair");
+  EXPECT_STREQ(phase_name(PositionProgress::Phase::Shape), "shape");
+}
+
 TEST(Position, ResultDoesNotDependOnTheThreadCount) {
   HexMesh a = test::box_hexes(17, 16, 16);  // 4352 hexes: above the parallel threshold
   PositionOptions options;

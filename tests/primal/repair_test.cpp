@@ -112,6 +112,31 @@ TEST(Repair, PositionNodesRepairsWhatAnEarlyStopLeaves) {
   EXPECT_EQ(s.repair.stop, "off");
 }
 
+TEST(Repair, ProgressIsToldEverySweep) {
+  std::vector<bool> fixed;
+  HexMesh mesh = tangled_box(0.9, &fixed);
+  const std::size_t start = summarize_quality(mesh, 0).inverted;
+  ASSERT_GT(start, 0u);
+  PositionOptions options;
+  options.fixed = fixed;
+  options.start = StartPosition::Keep;
+  options.max_outer_iterations = 0;
+  std::vector<PositionProgress> sweeps;
+  options.progress = [&sweeps](const PositionProgress& p) {
+    if (p.phase == PositionProgress::Phase::Repair) sweeps.push_back(p);
+  };
+  const PositionReport r = position_nodes(mesh, options);
+  ASSERT_TRUE(r.repair.ran) << r.repair.stop;
+  ASSERT_EQ(sweeps.size(), r.repair.sweeps);
+  for (std::size_t i = 0; i < sweeps.size(); ++i) {
+    EXPECT_EQ(sweeps[i].step, i + 1);
+    EXPECT_EQ(sweeps[i].limit, static_cast<std::size_t>(options.max_repair_sweeps));
+    EXPECT_LE(sweeps[i].inverted, i == 0 ? start : sweeps[i - 1].inverted);
+  }
+  EXPECT_EQ(sweeps.back().inverted, r.repair.inverted_after);
+  EXPECT_EQ(sweeps.back().min_scaled_jacobian, r.repair.min_scaled_jacobian_after);
+}
+
 TEST(Repair, IsDeterministic) {
   std::vector<bool> fixed;
   HexMesh a = tangled_box(0.9, &fixed);

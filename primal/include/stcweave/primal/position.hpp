@@ -31,6 +31,7 @@
 /// number of threads, so the same input gives the same output bit for bit.
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,30 @@ enum class StartPosition {
   Auto       ///< the harmonic placement when it has fewer inverted corners than the
              ///< current coordinates (e.g. nodes collapsed or scattered), else Keep
 };
+
+/// What `PositionOptions::progress` is told after every untangling round and every sweep of
+/// the repair and shape phases, so that a long run can show where it is. Reading it changes
+/// nothing: the positions do not depend on whether a callback is set.
+struct PositionProgress {
+  enum class Phase {
+    Untangle,  ///< a round of (L-BFGS minimisation, lower eps) on every free node
+    Repair,    ///< a sweep of local max-min moves around the hexes still inverted
+    Shape      ///< a sweep of local moves raising the worst hexes (`improve_shape`)
+  };
+  Phase phase = Phase::Untangle;
+  std::size_t step = 0;   ///< this phase's round or sweep, from 1
+  std::size_t limit = 0;  ///< the phase's bound on rounds or sweeps (from the options)
+  /// Untangle: corners with a non-positive Jacobian after the round; repair and shape:
+  /// hexes with a non-positive scaled Jacobian after the sweep.
+  std::size_t inverted = 0;
+  /// Untangle: L-BFGS iterations so far, over every round.
+  std::size_t iterations = 0;
+  /// Repair and shape: the worst hex's scaled Jacobian after the sweep (untangle: 0).
+  double min_scaled_jacobian = 0.0;
+};
+
+/// The phase's name as progress lines and reports write it ("untangle", "repair", "shape").
+[[nodiscard]] const char* phase_name(PositionProgress::Phase phase);
 
 /// Options of `position_nodes`. Defaults are the settings measured to work in
 /// research/geometry.md §3.3 / §4.3.
@@ -132,6 +157,9 @@ struct PositionOptions {
   /// Repair: the nodes moved are the free nodes within this many hex rings of an inverted
   /// hex (0: the inverted hexes' own nodes).
   int repair_rings = 2;
+  /// Called after every untangling round and every repair or shape sweep when set (see
+  /// `PositionProgress`); the CLI's `--progress` prints it.
+  std::function<void(const PositionProgress&)> progress;
 };
 
 /// What `raise_worst_corners` did.
