@@ -87,6 +87,17 @@ nlohmann::json self_crossing_json(const primal::SelfCrossingReport& s) {
 }
 
 /// The position report as JSON (hex ids as "h12").
+nlohmann::json repair_json(const primal::RepairReport& r) {
+  return {{"ran", r.ran},
+          {"sweeps", r.sweeps},
+          {"moves", r.moves},
+          {"inverted_before", r.inverted_before},
+          {"inverted_after", r.inverted_after},
+          {"min_scaled_jacobian_before", r.min_scaled_jacobian_before},
+          {"min_scaled_jacobian_after", r.min_scaled_jacobian_after},
+          {"stop", r.stop}};
+}
+
 nlohmann::json position_json(const primal::PositionReport& p) {
   nlohmann::json impossible = nlohmann::json::array();
   for (const auto& c : p.impossible)
@@ -127,15 +138,9 @@ nlohmann::json position_json(const primal::PositionReport& p) {
           {"good_start", p.good_start},
           {"min_scaled_jacobian_untangled", p.min_scaled_jacobian_untangled},
           {"mean_scaled_jacobian_untangled", p.mean_scaled_jacobian_untangled},
-          {"repair",
-           {{"ran", p.repair.ran},
-            {"sweeps", p.repair.sweeps},
-            {"moves", p.repair.moves},
-            {"inverted_before", p.repair.inverted_before},
-            {"inverted_after", p.repair.inverted_after},
-            {"min_scaled_jacobian_before", p.repair.min_scaled_jacobian_before},
-            {"min_scaled_jacobian_after", p.repair.min_scaled_jacobian_after},
-            {"stop", p.repair.stop}}},
+          {"repair", repair_json(p.repair)},
+          {"repaired_from", p.repaired_from},
+          {"other_repair", repair_json(p.other_repair)},
           {"shape",
            {{"ran", p.shape.ran},
             {"sweeps", p.shape.sweeps},

@@ -313,7 +313,8 @@ struct PositionReport {
   std::string stop;
   double seconds = 0.0;
   /// The optimised positions had more inverted hexes than the start, or a valid start had a
-  /// better worst hex (min scaled Jacobian) than them: the start was kept.
+  /// better worst hex (min scaled Jacobian) than them, or the start repaired better than
+  /// them (`repaired_from`): the start was kept.
   bool kept_start = false;
   /// The start was valid and good (`PositionOptions::good_start`): no untangling rounds ran.
   bool good_start = false;
@@ -321,7 +322,15 @@ struct PositionReport {
   double min_scaled_jacobian_untangled = 0.0;
   double mean_scaled_jacobian_untangled = 0.0;
   RepairReport repair;  ///< the repair of hexes left inverted by the untangling
-  ShapeReport shape;    ///< the shape phase after untangling
+  /// The positions `repair` started from: "untangled" (the rounds' result), "start" (kept
+  /// over them), or empty when nothing was left inverted.
+  std::string repaired_from;
+  /// When hexes were left inverted after rounds ran, the other positions ("start" or
+  /// "untangled") are repaired too and the better result kept (fewer inverted hexes, then
+  /// the larger minimum): this is the repair of the positions not kept (`ran` false when it
+  /// did not run).
+  RepairReport other_repair;
+  ShapeReport shape;  ///< the shape phase after untangling
 };
 
 /// The energy of one corner (see the file comment) for the edge matrix `edges` (columns
