@@ -1298,12 +1298,9 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
     report.stop += "; " + std::to_string(report.impossible.size()) + " impossible corners left out";
 
   QualitySummary after = summarize_quality(mesh, 0);
-  std::optional<Points> untangled_points;  // set when the start is kept over them
   if (after.inverted > before.inverted && report.free_nodes > 0) {
     // The energy counts corners; a user counts hexes. Never hand back more inverted hexes
-    // than we were given: keep the start instead (and the optimised positions, which the
-    // repair below may still prefer).
-    untangled_points = mesh.points;
+    // than we were given: keep the start instead.
     mesh.points = start_points;
     report.stop += "; kept the start (" + std::to_string(after.inverted) +
                    " inverted hexes after optimisation against " + std::to_string(before.inverted) +
@@ -1331,30 +1328,32 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
                      std::to_string(report.repair.inverted_after) + " inverted hexes (" +
                      report.repair.stop + ")";
     }
-    // Hexes left inverted: the untangling's positions and the start are both repaired and
-    // the better is kept (fewer inverted hexes, then the larger minimum; a tie keeps the
-    // first). The untangling lowers the inverted corners but can leave hexes the repair
-    // cannot reach (gmsh/part_a6_trisubdiv_coarse, reliable: 91 inverted from the
-    // untangled positions, 23 from the start). Only when rounds ran (else both are one) and
-    // the repair is on.
-    if (after.inverted > 0 && report.outer_iterations > 0 && options.max_repair_sweeps > 0) {
+    // Hexes left inverted from the untangling's positions: the start is repaired too and
+    // the better kept (fewer inverted hexes, then the larger minimum; a tie keeps the
+    // untangled positions). The untangling lowers the inverted corners but can leave hexes
+    // the repair cannot reach (gmsh/part_a6_trisubdiv_coarse, reliable: 91 inverted from
+    // the untangled positions, 25 from the start). Only when rounds ran (else both are
+    // one), the repair is on, and the start was not kept already: then the guard above
+    // found the untangled positions worse, and repairing them too was measured to cost a
+    // minute for nothing (real/pmp/fandisk_quads: 714 inverted against the start's 97).
+    if (after.inverted > 0 && report.outer_iterations > 0 && options.max_repair_sweeps > 0 &&
+        !report.kept_start) {
       Points first = mesh.points;
-      mesh.points = untangled_points ? std::move(*untangled_points) : start_points;
+      mesh.points = start_points;
       report.other_repair = repair_inverted(mesh, fixed, options);
       const QualitySummary other = summarize_quality(mesh, 0);
       const bool better = other.inverted < after.inverted ||
                           (other.inverted == after.inverted &&
                            other.min_scaled_jacobian > after.min_scaled_jacobian);
-      const std::string other_name = report.kept_start ? "untangled" : "start";
-      report.stop += "; repair of the " + other_name +
-                     " positions: " + std::to_string(report.other_repair.inverted_before) + " -> " +
+      report.stop += "; repair of the start positions: " +
+                     std::to_string(report.other_repair.inverted_before) + " -> " +
                      std::to_string(report.other_repair.inverted_after) + " inverted hexes (" +
                      report.other_repair.stop + "), " + (better ? "kept" : "not kept");
       if (better) {
         after = other;
-        report.repaired_from = other_name;
+        report.repaired_from = "start";
         std::swap(report.repair, report.other_repair);
-        report.kept_start = other_name == "start";
+        report.kept_start = true;
       } else {
         mesh.points = std::move(first);
       }

@@ -325,10 +325,10 @@ struct PositionReport {
   /// The positions `repair` started from: "untangled" (the rounds' result), "start" (kept
   /// over them), or empty when nothing was left inverted.
   std::string repaired_from;
-  /// When hexes were left inverted after rounds ran, the other positions ("start" or
-  /// "untangled") are repaired too and the better result kept (fewer inverted hexes, then
-  /// the larger minimum): this is the repair of the positions not kept (`ran` false when it
-  /// did not run).
+  /// When the untangled positions were repaired and hexes were left inverted, the start is
+  /// repaired too and the better result kept (fewer inverted hexes, then the larger
+  /// minimum): this is the repair of the positions not kept (`ran` false when it did not
+  /// run, e.g. when the start had been kept over the untangled positions already).
   RepairReport other_repair;
   ShapeReport shape;  ///< the shape phase after untangling
 };
