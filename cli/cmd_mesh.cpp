@@ -86,7 +86,7 @@ nlohmann::json self_crossing_json(const primal::SelfCrossingReport& s) {
            {{"search", s.search_seconds}, {"weave", s.weave_seconds}, {"join", s.join_seconds}}}};
 }
 
-/// The position report as JSON (hex ids as "h12").
+/// A repair report as JSON (the `repair` and `other_repair` objects of the position report).
 nlohmann::json repair_json(const primal::RepairReport& r) {
   return {{"ran", r.ran},
           {"sweeps", r.sweeps},
@@ -98,6 +98,7 @@ nlohmann::json repair_json(const primal::RepairReport& r) {
           {"stop", r.stop}};
 }
 
+/// The position report as JSON (hex ids as "h12").
 nlohmann::json position_json(const primal::PositionReport& p) {
   nlohmann::json impossible = nlohmann::json::array();
   for (const auto& c : p.impossible)

@@ -185,21 +185,25 @@ TEST_F(Cli, GeneratedSurfaceMeshesToItsBox) {
   EXPECT_EQ(j.at("quality").at("inverted").get<int>(), 0);
 }
 
+/// Grades the spacing of an OBJ surface along x (x -> x^2 / 4, for x in [0, 4]): the
+/// harmonic start of its interior is then no longer optimal, so untangling rounds run.
+void grade_along_x(const fs::path& surface) {
+  std::istringstream in(slurp(surface));
+  std::ostringstream graded;
+  for (std::string line; std::getline(in, line);) {
+    double x = 0.0, y = 0.0, z = 0.0;
+    if (std::sscanf(line.c_str(), "v %lf %lf %lf", &x, &y, &z) == 3)
+      graded << "v " << x * x / 4.0 << ' ' << y << ' ' << z << '\n';
+    else
+      graded << line << '\n';
+  }
+  std::ofstream(surface) << graded.str();
+}
+
 TEST_F(Cli, NewtonStepsAreOptInAndReported) {
   const fs::path surface = dir_ / "box.obj", out = dir_ / "out.vtk", report = dir_ / "r.json";
   ASSERT_EQ(run("generate box 4 4 4 -q -o " + surface.string()).code, 0);
-  {  // grade the spacing along x (x -> x^2 / 4): the harmonic start is no longer optimal
-    std::istringstream in(slurp(surface));
-    std::ostringstream graded;
-    for (std::string line; std::getline(in, line);) {
-      double x = 0.0, y = 0.0, z = 0.0;
-      if (std::sscanf(line.c_str(), "v %lf %lf %lf", &x, &y, &z) == 3)
-        graded << "v " << x * x / 4.0 << ' ' << y << ' ' << z << '\n';
-      else
-        graded << line << '\n';
-    }
-    std::ofstream(surface) << graded.str();
-  }
+  grade_along_x(surface);
   const std::string mesh =
       "mesh " + surface.string() + " -o " + out.string() + " -q --report " + report.string();
   ASSERT_EQ(run(mesh).code, 0);
@@ -220,18 +224,7 @@ TEST_F(Cli, ProgressNamesEachUntanglingRound) {
   // rounds run, and --progress prints one line per round (as many as the report counts).
   const fs::path surface = dir_ / "box.obj", out = dir_ / "out.vtk", report = dir_ / "r.json";
   ASSERT_EQ(run("generate box 4 4 4 -q -o " + surface.string()).code, 0);
-  {
-    std::istringstream in(slurp(surface));
-    std::ostringstream graded;
-    for (std::string line; std::getline(in, line);) {
-      double x = 0.0, y = 0.0, z = 0.0;
-      if (std::sscanf(line.c_str(), "v %lf %lf %lf", &x, &y, &z) == 3)
-        graded << "v " << x * x / 4.0 << ' ' << y << ' ' << z << '\n';
-      else
-        graded << line << '\n';
-    }
-    std::ofstream(surface) << graded.str();
-  }
+  grade_along_x(surface);
   const CliRun r = run("mesh " + surface.string() + " -o " + out.string() + " --report " +
                        report.string() + " --good-start 2 --progress");
   ASSERT_EQ(r.code, 0) << r.out;
