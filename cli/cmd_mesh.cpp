@@ -39,6 +39,7 @@ struct MeshArgs {
   bool no_untangle = false;
   std::string start = "harmonic";
   std::string pillow = "auto";
+  std::string interior = "auto";
   int position_rounds = 100;
   int position_iterations = 3000;
   int position_newton_after = primal::PositionOptions{}.newton_after;
@@ -226,6 +227,7 @@ int run_mesh(const MeshArgs& a) {
     throw InvalidInput("--start must be layers or harmonic, not '" + a.start + "'");
   options.layer_start = a.start == "layers";
   options.pillow.mode = primal::pillow_mode_from_name(a.pillow);
+  options.interior.mode = primal::interior_mode_from_name(a.interior);
   options.position.max_outer_iterations = a.position_rounds;
   options.position.max_inner_iterations = a.position_iterations;
   options.position.theta = a.position_theta;
@@ -355,6 +357,17 @@ int run_mesh(const MeshArgs& a) {
                        {"mean_scaled_jacobian", r.quality.mean_scaled_jacobian},
                        {"inverted", r.quality.inverted},
                        {"below_0_2", r.quality.below_0_2}};
+  report["interior"] = {{"mode", a.interior},
+                        {"triangle_split", r.interior.triangle_split},
+                        {"used", r.interior.used ? "tets" : "woven"},
+                        {"compared", r.interior.compared},
+                        {"reason", r.interior.reason}};
+  if (r.interior.tets > 0) {
+    report["interior"]["triangles"] = r.interior.triangles;
+    report["interior"]["tets"] = r.interior.tets;
+    report["interior"]["interior_vertices"] = r.interior.interior_vertices;
+    report["interior"]["seconds"] = r.interior.seconds;
+  }
   report["pillow"] = {{"mode", primal::to_string(r.pillow.mode)},
                       {"applied", r.pillow.applied},
                       {"reason", r.pillow.reason},
@@ -411,6 +424,7 @@ int run_mesh(const MeshArgs& a) {
                        {"pillow", r.seconds.pillow},
                        {"position", r.seconds.position},
                        {"quality", r.seconds.quality},
+                       {"other_interior", r.seconds.other_interior},
                        {"stc", stc_seconds},
                        {"write", write_seconds},
                        {"total", r.seconds.total() + stc_seconds + write_seconds}};
@@ -464,6 +478,7 @@ int run_mesh(const MeshArgs& a) {
               << " hexes around an interior edge (" << valence.interior_edges_over_4
               << " edges over 4), at most " << valence.max_hexes_at_interior_node
               << " at an interior node (" << valence.interior_nodes_over_8 << " nodes over 8)\n";
+    if (r.interior.triangle_split) std::cout << "interior   " << r.interior.reason << "\n";
     std::cout << "pillow     " << r.pillow.reason << "\n";
     std::cout << "valid      " << (r.validation.valid ? "yes" : "NO: " + r.validation.summary())
               << "\n";
@@ -580,6 +595,12 @@ Action add_mesh_command(CLI::App& app) {
                   "boundary and flat or inverted), always, never")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "always", "never"}));
+  sub->add_option("--interior", args->interior,
+                  "the interior of a triangle-split surface (docs/tet-interior.md): auto (weave "
+                  "it and split a tetrahedral mesh of it, keep the better), weave, tets (split "
+                  "a tetrahedral mesh; other surfaces are refused)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "weave", "tets"}));
   sub->add_option("--position-rounds", args->position_rounds,
                   "untangling: most rounds of (minimise, lower epsilon)")
       ->capture_default_str()

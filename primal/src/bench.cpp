@@ -45,9 +45,9 @@ std::string safe_stem(std::string_view name) {
 /// Stages in the order the pipeline runs them; `total` always last, others alphabetically
 /// between.
 int stage_rank(const std::string& stage) {
-  static constexpr std::array<std::string_view, 10> kOrder = {
-      "diagnose", "orient",   "weave",   "validate", "recover",
-      "pillow",   "position", "quality", "stc",      "write"};
+  static constexpr std::array<std::string_view, 11> kOrder = {
+      "diagnose", "orient",  "weave", "validate", "recover",       "pillow",
+      "position", "quality", "stc",   "write",    "other_interior"};
   for (std::size_t i = 0; i < kOrder.size(); ++i)
     if (stage == kOrder[i]) return static_cast<int>(i);
   return stage == "total" ? 1000 : 500;

@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "cad_split.hpp"
+#include "gmsh_session.hpp"
 
 #include <gmsh.h>
 #include <cstdio>
@@ -101,50 +102,8 @@ bool has_cad_support() {
 
 namespace {
 
-/// Gmsh's one global state: initialised on first use, finalised when the program ends.
-/// Every use holds `mutex`.
-class GmshSession {
- public:
-  static GmshSession& instance() {
-    static GmshSession session;
-    return session;
-  }
-  std::mutex mutex;
-
-  GmshSession(const GmshSession&) = delete;
-  GmshSession& operator=(const GmshSession&) = delete;
-  GmshSession(GmshSession&&) = delete;
-  GmshSession& operator=(GmshSession&&) = delete;
-
- private:
-  GmshSession() {
-    // No configuration files: the result must not depend on the user's gmshrc.
-    gmsh::initialize(0, nullptr, false);
-    gmsh::option::setNumber("General.Terminal", 0);
-  }
-  ~GmshSession() {
-    try {
-      gmsh::finalize();
-    } catch (...) {  // NOLINT(bugprone-empty-catch): nothing to report at program end
-    }
-  }
-};
-
-/// What a Gmsh call threw, as text (Gmsh 4.8 throws std::string, later versions
-/// std::exception).
-std::string gmsh_reason() {
-  try {
-    throw;
-  } catch (const std::string& s) {
-    return s;
-  } catch (const std::exception& e) {
-    return e.what();
-  } catch (const char* s) {
-    return s;
-  } catch (...) {
-    return "unknown Gmsh error";
-  }
-}
+using gmsh_detail::gmsh_reason;
+using gmsh_detail::GmshSession;
 
 /// Strips terminal colour codes and surrounding blanks and stars from one line of output.
 std::string clean_line(const std::string& line) {

@@ -45,6 +45,7 @@ int rule_code(std::string_view rule) {
   if (rule == "blind-chord") return kRuleBlindChord;
   if (rule == "parallel-merge") return kRuleParallelMerge;
   if (rule == "pillow") return kRulePillow;
+  if (rule == "tet-split") return kRuleTetSplit;
   return kRuleOther;
 }
 
@@ -60,6 +61,8 @@ std::string_view rule_name(int code) {
       return "parallel-merge";
     case kRulePillow:
       return "pillow";
+    case kRuleTetSplit:
+      return "tet-split";
     default:
       return "other";
   }

@@ -1,7 +1,9 @@
 #include "stcweave/primal/pipeline.hpp"
 
 #include <chrono>
+#include <exception>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <utility>
 
@@ -28,9 +30,99 @@ class Stopwatch {
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
+std::string figures(const MeshResult& r) {
+  std::ostringstream out;
+  out << r.quality.hexes << " hexes, " << r.quality.inverted << " inverted, min scaled Jacobian "
+      << r.quality.min_scaled_jacobian;
+  return out.str();
+}
+
+/// The better of two meshes of the same surface: fewer inverted hexes, then the larger
+/// minimum scaled Jacobian, then fewer hexes; `a` on a tie.
+bool better_or_equal(const QualitySummary& a, const QualitySummary& b) {
+  if (a.inverted != b.inverted) return a.inverted < b.inverted;
+  if (a.min_scaled_jacobian != b.min_scaled_jacobian)
+    return a.min_scaled_jacobian > b.min_scaled_jacobian;
+  return a.hexes <= b.hexes;
+}
+
+/// `InteriorMode::Auto` on a triangle-split surface: the whole pipeline once with each
+/// interior, the better kept. Nothing when the surface is not triangle-split (or Gmsh is
+/// missing, or the file is not one readable shell): the caller weaves as usual.
+std::optional<MeshResult> compare_interiors(const MeshFile& file, const MeshOptions& options) {
+  if (!has_tet_interior_support()) return std::nullopt;
+  try {
+    const SurfaceDiagnosis d = diagnose(file);
+    if (d.components != 1 || !d.closed || !d.manifold) return std::nullopt;
+    if (!stc::recognise_triangle_split(surface_of(file).surface)) return std::nullopt;
+  } catch (const Error&) {
+    return std::nullopt;  // the woven path reports what is wrong with the file
+  }
+  MeshOptions weave_only = options;
+  weave_only.interior.mode = InteriorMode::Weave;
+  MeshOptions tets_only = options;
+  tets_only.interior.mode = InteriorMode::Tets;
+  std::optional<MeshResult> woven;
+  std::optional<MeshResult> tets;
+  std::exception_ptr weave_error;
+  std::string tet_error;
+  Stopwatch clock;
+  try {
+    woven = mesh_file(file, weave_only);
+  } catch (const Error&) {
+    weave_error = std::current_exception();
+  }
+  const double weave_seconds = clock.lap();
+  try {
+    tets = mesh_file(file, tets_only);
+  } catch (const Error& e) {
+    tet_error = e.what();
+  }
+  const double tet_seconds = clock.lap();
+  if (!tets) {
+    if (weave_error) std::rethrow_exception(weave_error);
+    woven->interior.triangle_split = true;
+    woven->interior.compared = true;
+    woven->interior.reason = "auto: woven (the tet interior failed: " + tet_error + ")";
+    woven->seconds.other_interior = tet_seconds;
+    return woven;
+  }
+  tets->interior.compared = true;
+  if (!woven) {
+    tets->seconds.other_interior = weave_seconds;
+    std::string why = "the weave failed";
+    try {
+      std::rethrow_exception(weave_error);
+    } catch (const Error& e) {
+      why += ": ";
+      why += e.what();
+    }
+    tets->interior.reason = "auto: tets (" + why + ")";
+    return tets;
+  }
+  const bool keep_tets = better_or_equal(tets->quality, woven->quality) &&
+                         !better_or_equal(woven->quality, tets->quality);
+  MeshResult& kept = keep_tets ? *tets : *woven;
+  kept.seconds.other_interior = (keep_tets ? *woven : *tets).seconds.total();
+  kept.interior.triangle_split = true;
+  kept.interior.compared = true;
+  kept.interior.triangles = tets->interior.triangles;
+  kept.interior.tets = tets->interior.tets;
+  kept.interior.interior_vertices = tets->interior.interior_vertices;
+  kept.interior.seconds = tets->interior.seconds;
+  kept.interior.used = keep_tets;
+  kept.interior.reason = std::string("auto: ") + (keep_tets ? "tets" : "woven") +
+                         " kept (tets: " + figures(*tets) + "; woven: " + figures(*woven) + ")";
+  return std::move(kept);
+}
+
 }  // namespace
 
 MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
+  if (options.interior.mode == InteriorMode::Auto) {
+    if (std::optional<MeshResult> compared = compare_interiors(file, options))
+      return std::move(*compared);
+  }
   const auto stage = [&](const char* name) {
     if (options.on_stage) options.on_stage(name);
   };
@@ -73,7 +165,28 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
                                                         ? dihedral_angles(r.surface)
                                                         : std::vector<std::array<double, 4>>{};
   const bool self_crossing = r.diagnosis.self_intersecting_loops.value_or(0) > 0;
-  if (!whole && options.self_crossing_moves && self_crossing) {
+  Points tet_positions;
+  if (options.interior.mode == InteriorMode::Tets) {
+    if (r.diagnosis.components != 1) {
+      throw Unsupported(file.path +
+                        ": the tet interior (--interior tets) takes one shell, this "
+                        "surface has " +
+                        std::to_string(r.diagnosis.components) + "; use --interior weave");
+    }
+    const std::optional<stc::TriangleSplit> split =
+        stc::recognise_triangle_split(r.surface.surface);
+    if (!split) {
+      throw InvalidInput(file.path +
+                         ": the tet interior (--interior tets) needs a triangle-split "
+                         "surface (every triangle of a triangle mesh cut into three quads at its "
+                         "centre and edge middles), and this one is not; use --interior weave");
+    }
+    r.interior.triangle_split = true;
+    r.interior.used = true;
+    r.interior.reason = "tets: the surface is triangle-split (" +
+                        std::to_string(split->triangles.size()) + " triangles)";
+    r.woven = tet_interior(r.surface, *split, options.interior, tet_positions, &r.interior);
+  } else if (!whole && options.self_crossing_moves && self_crossing) {
     r.woven = weave_solids_self_crossing(r.surface, options.weave, options.cut,
                                          options.self_crossing, &r.solids, r.self_crossing);
   } else if (whole && options.self_crossing_moves && self_crossing) {
@@ -113,12 +226,18 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
   if (!r.validation.valid && !options.keep_invalid) stc::require_valid(r.validation);
 
   stage("recover");
-  r.mesh = recover_hex_mesh(r.surface.points, r.woven, &r.harmonic);
+  if (r.interior.used) {
+    // The tet split comes with its own positions: Gmsh's interior vertices, the centres.
+    r.mesh.complex = r.woven.complex;
+    r.mesh.points = tet_positions;
+  } else {
+    r.mesh = recover_hex_mesh(r.surface.points, r.woven, &r.harmonic);
+  }
   r.seconds.recover = clock.lap();
 
   // The layer placement reads the weave's own hexes, so it runs before pillowing.
-  const bool layer_start =
-      options.untangle && options.layer_start && layer_positions(r.mesh, r.woven) > 0;
+  const bool layer_start = !r.interior.used && options.untangle && options.layer_start &&
+                           layer_positions(r.mesh, r.woven) > 0;
 
   stage("pillow");
   // Auto may compare the pillowed complex with the woven one after positioning both.

@@ -28,6 +28,7 @@ std::size_t hexes(const std::string& file, weave::RuleSet rules, double min_weig
   options.weave.check = true;
   options.untangle = false;
   options.pillow.mode = primal::PillowMode::Never;
+  options.interior.mode = primal::InteriorMode::Weave;  // the weave's rules are under test
   const primal::MeshResult r = primal::mesh_file(primal::read_mesh(kGmsh / file), options);
   EXPECT_TRUE(r.validation.valid) << file << ": " << r.validation.summary();
   return r.woven.complex.hexes.size();  // the weave's own hexes, before any pillow

@@ -199,7 +199,8 @@ nlohmann::json page_data(const primal::HexMesh& mesh, const stc::HexStc& stc,
     j["rule"] = ints_json(v);
     nlohmann::json names = nlohmann::json::object();
     for (const int code : {primal::kRuleCross, primal::kRuleCrossRelaxed, primal::kRuleBlindChord,
-                           primal::kRuleParallelMerge, primal::kRulePillow, primal::kRuleOther})
+                           primal::kRuleParallelMerge, primal::kRulePillow, primal::kRuleTetSplit,
+                           primal::kRuleOther})
       names[std::to_string(code)] = primal::rule_name(code);
     j["rule_names"] = names;
   }

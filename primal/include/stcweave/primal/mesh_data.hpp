@@ -69,6 +69,8 @@ inline constexpr int kRuleBlindChord = 2;
 inline constexpr int kRuleParallelMerge = 3;
 /// A hex the pillow stage added after the weave (pillow.hpp).
 inline constexpr int kRulePillow = 4;
+/// A hex of the tet interior (tet_interior.hpp): a quarter of a split tetrahedron.
+inline constexpr int kRuleTetSplit = 5;
 inline constexpr int kRuleOther = 9;
 /// The code of a weave rule name (`"cross"` -> 0, ...; an unknown name -> `kRuleOther`).
 [[nodiscard]] int rule_code(std::string_view rule);

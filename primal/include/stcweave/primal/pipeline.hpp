@@ -16,6 +16,7 @@
 #include "stcweave/primal/quality.hpp"
 #include "stcweave/primal/recover.hpp"
 #include "stcweave/primal/self_crossing.hpp"
+#include "stcweave/primal/tet_interior.hpp"
 #include "stcweave/stc/validate.hpp"
 #include "stcweave/weave/weave.hpp"
 
@@ -53,6 +54,9 @@ struct MeshOptions {
   PositionOptions position;
   /// Settings of the handle cuts (surfaces of genus > 0, see cut.hpp).
   CutOptions cut;
+  /// The interior of a triangle-split surface: woven, or a split tetrahedral mesh, or
+  /// (`auto`, the default) both and the better kept (tet_interior.hpp, docs/tet-interior.md).
+  TetInteriorOptions interior;
   /// Called when a stage starts ("diagnose", "orient", "weave", "validate", "recover",
   /// "pillow", "position", "quality").
   std::function<void(const std::string& stage)> on_stage;
@@ -68,8 +72,12 @@ struct StageSeconds {
   double pillow = 0.0;
   double position = 0.0;
   double quality = 0.0;
+  /// `InteriorMode::Auto` on a triangle-split surface: the whole pipeline with the interior
+  /// that was not kept (the other stages are those of the kept one).
+  double other_interior = 0.0;
   [[nodiscard]] double total() const {
-    return diagnose + orient + weave + validate + recover + pillow + position + quality;
+    return diagnose + orient + weave + validate + recover + pillow + position + quality +
+           other_interior;
   }
 };
 
@@ -93,6 +101,9 @@ struct MeshResult {
   /// The moves, attached hexes and join of a surface with self-intersecting loops (`used` is
   /// false for any other surface).
   SelfCrossingReport self_crossing;
+  /// Whether the surface is triangle-split and which interior was kept (`used`: the tet
+  /// split; then `woven` holds the split's hexes, not a weave's).
+  TetInteriorReport interior;
   QualitySummary quality;
   StageSeconds seconds;
 };
@@ -105,6 +116,8 @@ struct MeshResult {
 /// \throw WeaveError when the weave is blocked, or the search for front moves of a surface
 ///        with self-intersecting loops gives up.
 /// \throw InternalError when the woven complex breaks an invariant (unless keep_invalid).
+/// \throw InvalidInput with `interior.mode` Tets, for a surface that is not triangle-split or
+///        not one shell, or that Gmsh cannot tetrahedralise.
 MeshResult mesh_file(const MeshFile& file, const MeshOptions& options = {});
 
 }  // namespace stcweave::primal

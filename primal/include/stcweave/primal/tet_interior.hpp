@@ -1,0 +1,78 @@
+#pragma once
+/// \file
+/// The tetrahedral interior of a triangle-split surface (docs/tet-interior.md).
+///
+/// On a triangle-split quad surface (every triangle of a triangle mesh cut into three quads,
+/// stc/tet_split.hpp) the weave makes a star: every loop circles one triangle vertex, every
+/// sheet is a small cap, and the caps meet at one interior node. That node cannot see the
+/// whole boundary of a non-convex solid, so hexes stay inverted, and on a convex one the
+/// hexes at it are needles. This stage gives such surfaces another interior: the solid
+/// bounded by the surface's triangles is tetrahedralised (Gmsh's Delaunay mesher, the
+/// boundary triangles kept) and every tetrahedron is split into four hexes. The boundary
+/// stays exactly the input; the STC is the boundary loops' caps plus one closed blind sheet
+/// around each interior vertex, so interior vertices play the part of the star's one node.
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+#include "stcweave/primal/mesh.hpp"
+#include "stcweave/stc/tet_split.hpp"
+#include "stcweave/weave/weave.hpp"
+
+namespace stcweave::primal {
+
+/// How the pipeline fills a triangle-split surface.
+enum class InteriorMode {
+  /// Weave it, and also split a tetrahedral mesh of it; keep the better (fewer inverted
+  /// hexes, then the larger minimum scaled Jacobian, then fewer hexes). Only for a
+  /// triangle-split surface of one shell with Gmsh at build time; anything else is woven.
+  Auto,
+  /// Always weave (the seed's way).
+  Weave,
+  /// Split a tetrahedral mesh; a surface that is not triangle-split is refused.
+  Tets,
+};
+
+[[nodiscard]] std::string_view interior_mode_name(InteriorMode mode);
+/// \throw InvalidInput for a name other than auto, weave, tets.
+[[nodiscard]] InteriorMode interior_mode_from_name(std::string_view name);
+
+/// The interior's options. Gmsh's interior sizes are interpolated from the boundary edges'
+/// lengths (its Mesh.MeshSizeExtendFromBoundary); Gmsh 4.8 applies no size factor to the
+/// sizes of a discrete surface's nodes, and a tetrahedralisation without interior points was
+/// measured worse on half of Gmsh's own boundaries (docs/tet-interior.md), so there is no
+/// size setting.
+struct TetInteriorOptions {
+  InteriorMode mode = InteriorMode::Auto;
+};
+
+/// What the stage did.
+struct TetInteriorReport {
+  bool triangle_split = false;  ///< the surface was recognised as triangle-split
+  bool used = false;            ///< the output's interior is the tet split
+  bool compared = false;        ///< auto positioned both interiors and chose
+  std::string reason;           ///< one line: why this interior
+  std::size_t triangles = 0;
+  std::size_t tets = 0;
+  std::size_t interior_vertices = 0;  ///< tet vertices that Gmsh put inside
+  double seconds = 0.0;               ///< tetrahedralisation and split
+};
+
+/// True when stcweave was built with Gmsh (the tetrahedraliser); same as has_cad_support().
+[[nodiscard]] bool has_tet_interior_support();
+
+/// Tetrahedralises the solid bounded by the triangles of `split` and splits every tet into
+/// four hexes. The result has the surface's nodes first (ids and order kept) and is shaped
+/// like a weave's (`hex_rule` "tet-split", `hex_shrink` -1, no trace); `positions` receives
+/// coordinates for every node of the complex: the surface's, Gmsh's for interior tet
+/// vertices, and each added node at the centre of its tet vertices.
+/// \pre `surface` is closed and oriented outward; `split` is its triangle split.
+/// \throw Unsupported when stcweave was built without Gmsh.
+/// \throw InvalidInput when Gmsh cannot tetrahedralise the solid while keeping the boundary
+///        triangles (for instance a self-intersecting surface), with Gmsh's reason.
+weave::WeaveResult tet_interior(const SurfaceMesh& surface, const stc::TriangleSplit& split,
+                                const TetInteriorOptions& options, Points& positions,
+                                TetInteriorReport* report = nullptr);
+
+}  // namespace stcweave::primal

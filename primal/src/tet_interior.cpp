@@ -1,0 +1,221 @@
+#include "stcweave/primal/tet_interior.hpp"
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "stcweave/stc/errors.hpp"
+
+#if STCWEAVE_HAVE_GMSH
+#include "gmsh_session.hpp"
+#endif
+
+namespace stcweave::primal {
+
+std::string_view interior_mode_name(InteriorMode mode) {
+  switch (mode) {
+    case InteriorMode::Auto:
+      return "auto";
+    case InteriorMode::Weave:
+      return "weave";
+    case InteriorMode::Tets:
+      return "tets";
+  }
+  return "auto";
+}
+
+InteriorMode interior_mode_from_name(std::string_view name) {
+  for (const InteriorMode m : {InteriorMode::Auto, InteriorMode::Weave, InteriorMode::Tets})
+    if (name == interior_mode_name(m)) return m;
+  throw InvalidInput("unknown interior '" + std::string(name) + "': use auto, weave or tets");
+}
+
+#if !STCWEAVE_HAVE_GMSH
+
+bool has_tet_interior_support() {
+  return false;
+}
+
+weave::WeaveResult tet_interior(const SurfaceMesh& /*surface*/, const stc::TriangleSplit& /*split*/,
+                                const TetInteriorOptions& /*options*/, Points& /*positions*/,
+                                TetInteriorReport* /*report*/) {
+  throw Unsupported(
+      "the tetrahedral interior (--interior tets) needs Gmsh, and this stcweave was built "
+      "without it (CMake option STCWEAVE_WITH_GMSH is OFF or libgmsh-dev was not found); "
+      "install libgmsh-dev and reconfigure, or use --interior weave");
+}
+
+#else
+
+bool has_tet_interior_support() {
+  return true;
+}
+
+namespace {
+
+/// The Gmsh model of one call, cleared on the way out whatever happens.
+class GmshModel {
+ public:
+  GmshModel() : lock_(gmsh_detail::GmshSession::instance().mutex) { gmsh::clear(); }
+  GmshModel(const GmshModel&) = delete;
+  GmshModel& operator=(const GmshModel&) = delete;
+  GmshModel(GmshModel&&) = delete;
+  GmshModel& operator=(GmshModel&&) = delete;
+  ~GmshModel() {
+    try {
+      gmsh::clear();
+    } catch (...) {  // NOLINT(bugprone-empty-catch): already failing or done
+    }
+  }
+
+ private:
+  std::lock_guard<std::mutex> lock_;
+};
+
+/// Every option the 3D mesh reads, set explicitly: the session is shared with the CAD front
+/// end, which sets sizes and algorithms of its own.
+void set_tet_options() {
+  gmsh::option::setNumber("General.Terminal", 0);
+  gmsh::option::setNumber("General.Verbosity", 2);
+  gmsh::option::setNumber("General.NumThreads", 1);  // determinism
+  gmsh::option::setNumber("Mesh.MaxNumThreads3D", 1);
+  gmsh::option::setNumber("Mesh.RandomFactor", 1e-9);
+  gmsh::option::setNumber("Mesh.RandomFactor3D", 1e-12);
+  gmsh::option::setNumber("Mesh.Algorithm3D", 1);  // Delaunay
+  gmsh::option::setNumber("Mesh.Optimize", 1);
+  gmsh::option::setNumber("Mesh.OptimizeNetgen", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 1);
+  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 1);
+  gmsh::option::setNumber("Mesh.MeshSizeFactor", 1);
+  gmsh::option::setNumber("Mesh.MeshSizeMin", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeMax", 1e22);
+  gmsh::option::setNumber("Mesh.RecombineAll", 0);
+  gmsh::option::setNumber("Mesh.Recombine3DAll", 0);
+  gmsh::option::setNumber("Mesh.SubdivisionAlgorithm", 0);
+  gmsh::option::setNumber("Mesh.ElementOrder", 1);
+}
+
+double signed_volume(const Points& p, const stc::Tet& t) {
+  const Eigen::Vector3d a = p.row(t[0].index());
+  const Eigen::Vector3d e1 = p.row(t[1].index()).transpose() - a;
+  const Eigen::Vector3d e2 = p.row(t[2].index()).transpose() - a;
+  const Eigen::Vector3d e3 = p.row(t[3].index()).transpose() - a;
+  return e1.dot(e2.cross(e3));
+}
+
+}  // namespace
+
+weave::WeaveResult tet_interior(const SurfaceMesh& surface, const stc::TriangleSplit& split,
+                                const TetInteriorOptions& /*options*/, Points& positions,
+                                TetInteriorReport* report) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::size_t num_surface = surface.surface.num_nodes;
+  if (static_cast<std::size_t>(surface.points.rows()) != num_surface)
+    throw InvalidInput("tet interior: the surface has " + std::to_string(num_surface) +
+                       " nodes but " + std::to_string(surface.points.rows()) + " points");
+
+  // Gmsh tags: vertex k of the split is tag k + 1.
+  std::vector<std::size_t> node_tags(split.vertices.size());
+  std::vector<double> coords(3 * split.vertices.size());
+  std::unordered_map<std::size_t, std::size_t> tag_of;  // surface node -> tag
+  for (std::size_t k = 0; k < split.vertices.size(); ++k) {
+    node_tags[k] = k + 1;
+    tag_of[split.vertices[k].index()] = k + 1;
+    for (int c = 0; c < 3; ++c)
+      coords[3 * k + static_cast<std::size_t>(c)] = surface.points(split.vertices[k].value(), c);
+  }
+  std::vector<std::size_t> triangle_tags;
+  triangle_tags.reserve(3 * split.triangles.size());
+  for (const auto& tri : split.triangles)
+    for (const NodeId v : tri) triangle_tags.push_back(tag_of.at(v.index()));
+
+  std::vector<std::size_t> interior_tags;
+  std::vector<double> interior_coords;
+  std::vector<std::size_t> tet_nodes;
+  {
+    const GmshModel model;
+    set_tet_options();
+    try {
+      gmsh::model::add("stcweave_tet_interior");
+      const int s = gmsh::model::addDiscreteEntity(2);
+      gmsh::model::mesh::addNodes(2, s, node_tags, coords);
+      gmsh::model::mesh::addElementsByType(s, 2, {}, triangle_tags);
+      const int loop = gmsh::model::geo::addSurfaceLoop({s});
+      const int v = gmsh::model::geo::addVolume({loop});
+      gmsh::model::geo::synchronize();
+      gmsh::model::mesh::generate(3);
+      std::vector<double> parametric;
+      gmsh::model::mesh::getNodes(interior_tags, interior_coords, parametric, 3, v, false, false);
+      std::vector<std::size_t> tet_tags;
+      gmsh::model::mesh::getElementsByType(4, tet_tags, tet_nodes, v);
+    } catch (...) {
+      throw InvalidInput("Gmsh could not tetrahedralise the solid bounded by the surface's " +
+                         std::to_string(split.triangles.size()) +
+                         " triangles: " + gmsh_detail::gmsh_reason() +
+                         " (use --interior weave to weave it instead)");
+    }
+  }
+  if (tet_nodes.empty()) {
+    throw InvalidInput("Gmsh made no tetrahedron in the solid bounded by the surface's " +
+                       std::to_string(split.triangles.size()) +
+                       " triangles (is the surface self-intersecting?); use --interior weave");
+  }
+
+  // Our numbering: the surface's nodes, then Gmsh's interior vertices in Gmsh's order.
+  const std::size_t num_vertices = num_surface + interior_tags.size();
+  positions.resize(static_cast<Eigen::Index>(num_vertices), 3);
+  positions.topRows(static_cast<Eigen::Index>(num_surface)) = surface.points;
+  std::unordered_map<std::size_t, NodeId> node_of;
+  for (std::size_t k = 0; k < split.vertices.size(); ++k) node_of[k + 1] = split.vertices[k];
+  for (std::size_t k = 0; k < interior_tags.size(); ++k) {
+    const NodeId id(num_surface + k);
+    if (!node_of.emplace(interior_tags[k], id).second)
+      throw InvalidInput("tet interior: Gmsh gave node tag " + std::to_string(interior_tags[k]) +
+                         " twice");
+    for (int c = 0; c < 3; ++c)
+      positions(id.value(), c) = interior_coords[3 * k + static_cast<std::size_t>(c)];
+  }
+  std::vector<stc::Tet> tets(tet_nodes.size() / 4);
+  for (std::size_t t = 0; t < tets.size(); ++t) {
+    for (std::size_t i = 0; i < 4; ++i) {
+      const auto it = node_of.find(tet_nodes[4 * t + i]);
+      if (it == node_of.end()) {
+        throw InvalidInput(
+            "Gmsh added a node on the boundary while tetrahedralising the solid (tag " +
+            std::to_string(tet_nodes[4 * t + i]) +
+            "): the surface's triangles could not be kept; use --interior weave");
+      }
+      tets[t][i] = it->second;
+    }
+    if (signed_volume(positions, tets[t]) < 0.0) std::swap(tets[t][2], tets[t][3]);
+  }
+
+  stc::TetSplit cut = stc::split_tets(split, num_vertices, tets);
+  positions.conservativeResize(static_cast<Eigen::Index>(cut.complex.num_nodes), 3);
+  for (std::size_t i = 0; i < cut.added_parents.size(); ++i) {
+    Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
+    for (const NodeId p : cut.added_parents[i]) sum += positions.row(p.value());
+    positions.row(static_cast<Eigen::Index>(cut.first_added + i)) =
+        sum / static_cast<double>(cut.added_parents[i].size());
+  }
+
+  weave::WeaveResult result;
+  result.num_input_nodes = num_surface;
+  result.hex_shrink.assign(cut.complex.hexes.size(), -1);
+  result.hex_rule.assign(cut.complex.hexes.size(), "tet-split");
+  result.complex = std::move(cut.complex);
+  if (report != nullptr) {
+    report->triangles = split.triangles.size();
+    report->tets = tets.size();
+    report->interior_vertices = interior_tags.size();
+    report->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  return result;
+}
+
+#endif
+
+}  // namespace stcweave::primal
