@@ -256,3 +256,41 @@ TEST_F(CadCli, WithoutGmshCadInputExitsTwoWithTheMessage) {
 }
 
 }  // namespace
+
+// The blind hole (genus 0, triangle-split): the woven star cannot see past the hole's rim and
+// kept inverted hexes (54 at 0.125); `--interior auto` keeps the split tetrahedral mesh
+// (docs/tet-interior.md), a valid mesh with no inverted hex, certified by `check` against the
+// surface it was made from.
+TEST_F(CadCli, BlindHoleGetsTheTetInteriorWithNoInvertedHex) {
+  STCWEAVE_SKIP_WITHOUT_GMSH();
+  const auto [r, report] =
+      mesh(data("plate_blind_hole.step"), "bh", "--size 0.25 --surface-out " + at("bh.obj"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("triangle-split surface"));
+  EXPECT_THAT(r.out, HasSubstr("interior   auto: tets kept"));
+  EXPECT_EQ(report["interior"]["used"], "tets");
+  EXPECT_EQ(report["interior"]["compared"], true);
+  EXPECT_EQ(report["interior"]["triangles"].get<int>() * 3, report["quads"].get<int>());
+  EXPECT_EQ(report["quality"]["inverted"], 0);
+  EXPECT_GT(report["quality"]["min_scaled_jacobian"].get<double>(), 0.1);
+  EXPECT_GT(report["seconds"]["other_interior"].get<double>(), 0.0);
+  const auto check = run_cli("check " + at("bh.vtk") + " --boundary " + at("bh.obj"));
+  EXPECT_EQ(check.code, 0) << check.out;
+  // Asked for, the weave alone and the tets alone; tets on a surface that is not split
+  // triangles is refused with exit code 2 and a reason.
+  const auto [woven, woven_report] = mesh(at("bh.obj"), "bh_weave", "--interior weave");
+  ASSERT_EQ(woven.code, 0) << woven.out;
+  EXPECT_EQ(woven_report["interior"]["used"], "woven");
+  const auto [tets, tets_report] = mesh(at("bh.obj"), "bh_tets", "--interior tets");
+  ASSERT_EQ(tets.code, 0) << tets.out;
+  EXPECT_EQ(tets_report["interior"]["used"], "tets");
+  EXPECT_EQ(tets_report["hexes"], report["hexes"]);
+  const auto refused =
+      run_cli("mesh " + data("lblock.obj") + " -o " + at("l.vtk") + " --interior tets");
+  EXPECT_EQ(refused.code, 2) << refused.out;
+  EXPECT_THAT(refused.out, HasSubstr("triangle-split"));
+  EXPECT_FALSE(fs::exists(at("l.vtk")));
+  const auto unknown =
+      run_cli("mesh " + data("lblock.obj") + " -o " + at("l.vtk") + " --interior tet");
+  EXPECT_EQ(unknown.code, 1) << unknown.out;
+}

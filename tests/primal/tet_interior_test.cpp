@@ -1,0 +1,170 @@
+#include "stcweave/primal/tet_interior.hpp"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <set>
+#include <utility>
+
+#include "stcweave/primal/pipeline.hpp"
+#include "stcweave/stc/errors.hpp"
+#include "stcweave/stc/validate.hpp"
+#include "support/shapes.hpp"
+
+namespace stcweave::primal {
+namespace {
+
+/// The triangle-split surface of a quad surface: each quad cut into two triangles along its
+/// diagonal (0, 2), then each triangle into three quads at its centre and edge middles.
+/// Written here, independently of stc::recognise_triangle_split.
+SurfaceMesh triangle_split_of(const SurfaceMesh& quads) {
+  std::vector<std::array<NodeId, 3>> triangles;
+  for (const stc::Quad& q : quads.surface.quads) {
+    triangles.push_back({q[0], q[1], q[2]});
+    triangles.push_back({q[0], q[2], q[3]});
+  }
+  std::vector<Eigen::RowVector3d> points;
+  for (Eigen::Index i = 0; i < quads.points.rows(); ++i) points.emplace_back(quads.points.row(i));
+  std::map<std::pair<int, int>, NodeId> middle;
+  const auto middle_of = [&](NodeId a, NodeId b) {
+    const std::pair<int, int> key(std::min(a.value(), b.value()), std::max(a.value(), b.value()));
+    const auto [it, inserted] = middle.emplace(key, NodeId(points.size()));
+    if (inserted) {
+      const Eigen::RowVector3d m = 0.5 * (points[a.index()] + points[b.index()]);
+      points.push_back(m);
+    }
+    return it->second;
+  };
+  SurfaceMesh out;
+  for (const auto& t : triangles) {
+    const NodeId c(points.size());
+    const Eigen::RowVector3d centre =
+        (points[t[0].index()] + points[t[1].index()] + points[t[2].index()]) / 3.0;
+    points.push_back(centre);
+    for (std::size_t k = 0; k < 3; ++k) {
+      const NodeId v = t[k];
+      out.surface.quads.push_back(
+          {v, middle_of(v, t[(k + 1) % 3]), c, middle_of(t[(k + 2) % 3], v)});
+    }
+  }
+  out.surface.num_nodes = points.size();
+  out.points.resize(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    out.points.row(static_cast<Eigen::Index>(i)) = points[i];
+  return out;
+}
+
+/// The voxel L-block (10 unit cubes), its quads split into triangles and those into quads:
+/// a non-convex triangle-split surface like those CAD gives.
+SurfaceMesh split_lblock() {
+  return triangle_split_of(test::voxel_surface(test::lblock_cells()));
+}
+
+class TetInterior : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!has_tet_interior_support()) GTEST_SKIP() << "stcweave was built without Gmsh";
+  }
+};
+
+TEST(TetInteriorModes, NamesRoundTripAndUnknownNamesAreRefused) {
+  for (const InteriorMode m : {InteriorMode::Auto, InteriorMode::Weave, InteriorMode::Tets})
+    EXPECT_EQ(interior_mode_from_name(interior_mode_name(m)), m);
+  EXPECT_THROW((void)interior_mode_from_name("tet"), InvalidInput);
+}
+
+TEST_F(TetInterior, SplitsTheLBlockIntoAValidComplexBoundedByTheInput) {
+  const SurfaceMesh surface = split_lblock();
+  const std::optional<stc::TriangleSplit> split = stc::recognise_triangle_split(surface.surface);
+  ASSERT_TRUE(split.has_value());
+  Points positions;
+  TetInteriorReport report;
+  const weave::WeaveResult r = tet_interior(surface, *split, {}, positions, &report);
+  EXPECT_EQ(report.triangles, surface.surface.quads.size() / 3);
+  EXPECT_GT(report.tets, 0u);
+  EXPECT_EQ(r.complex.hexes.size(), 4 * report.tets);
+  EXPECT_EQ(r.num_input_nodes, surface.surface.num_nodes);
+  EXPECT_EQ(r.hex_rule.size(), r.complex.hexes.size());
+  EXPECT_EQ(r.hex_shrink.size(), r.complex.hexes.size());
+  ASSERT_EQ(static_cast<std::size_t>(positions.rows()), r.complex.num_nodes);
+  // The surface's nodes keep their coordinates exactly.
+  EXPECT_TRUE(positions.topRows(surface.points.rows()).isApprox(surface.points, 0.0));
+  const stc::ValidationReport v = stc::validate_hex_complex(r.complex, &surface.surface);
+  EXPECT_TRUE(v.valid) << v.summary();
+  EXPECT_TRUE(v.boundary_compared);
+  // Gmsh's tets are positive, so the split start has no inverted hex.
+  HexMesh start{positions, r.complex};
+  EXPECT_EQ(summarize_quality(start).inverted, 0u);
+}
+
+TEST_F(TetInterior, PipelineKeepsTheBetterInteriorAndSaysWhy) {
+  const MeshFile file = test::file_of(split_lblock(), "split-lblock");
+  MeshOptions woven_only;
+  woven_only.interior.mode = InteriorMode::Weave;
+  const MeshResult woven = mesh_file(file, woven_only);
+  EXPECT_FALSE(woven.interior.used);
+  EXPECT_FALSE(woven.interior.compared);
+
+  MeshOptions tets_only;
+  tets_only.interior.mode = InteriorMode::Tets;
+  const MeshResult tets = mesh_file(file, tets_only);
+  EXPECT_TRUE(tets.interior.used);
+  EXPECT_TRUE(tets.validation.valid) << tets.validation.summary();
+  EXPECT_EQ(tets.quality.inverted, 0u);
+  EXPECT_EQ(tets.woven.complex.hexes.size(), 4 * tets.interior.tets);
+
+  const MeshResult best = mesh_file(file, MeshOptions{});
+  EXPECT_TRUE(best.interior.triangle_split);
+  EXPECT_TRUE(best.interior.compared);
+  EXPECT_NE(best.interior.reason.find("tets: "), std::string::npos) << best.interior.reason;
+  EXPECT_NE(best.interior.reason.find("woven: "), std::string::npos) << best.interior.reason;
+  EXPECT_GT(best.seconds.other_interior, 0.0);
+  // What auto kept is the better of the two runs above, run for run.
+  const MeshResult& expected =
+      (tets.quality.inverted < woven.quality.inverted ||
+       (tets.quality.inverted == woven.quality.inverted &&
+        tets.quality.min_scaled_jacobian > woven.quality.min_scaled_jacobian))
+          ? tets
+          : woven;
+  EXPECT_EQ(best.interior.used, &expected == &tets) << best.interior.reason;
+  EXPECT_EQ(best.mesh.complex.hexes, expected.mesh.complex.hexes);
+  EXPECT_TRUE(best.mesh.points.isApprox(expected.mesh.points, 0.0));
+}
+
+TEST_F(TetInterior, TheSameInputGivesTheSameMesh) {
+  const MeshFile file = test::file_of(split_lblock(), "split-lblock");
+  MeshOptions options;
+  options.interior.mode = InteriorMode::Tets;
+  const MeshResult a = mesh_file(file, options);
+  const MeshResult b = mesh_file(file, options);
+  EXPECT_EQ(a.mesh.complex.hexes, b.mesh.complex.hexes);
+  EXPECT_TRUE(a.mesh.points.isApprox(b.mesh.points, 0.0));
+}
+
+TEST_F(TetInterior, TetsAreRefusedForASurfaceThatIsNotTriangleSplit) {
+  MeshOptions options;
+  options.interior.mode = InteriorMode::Tets;
+  try {
+    (void)mesh_file(test::file_of(test::box_surface(3, 2, 2), "box"), options);
+    FAIL() << "a box surface was accepted by --interior tets";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("triangle-split"), std::string::npos) << e.what();
+  }
+  // Auto weaves it without a second run.
+  const MeshResult r = mesh_file(test::file_of(test::box_surface(3, 2, 2), "box"));
+  EXPECT_FALSE(r.interior.triangle_split);
+  EXPECT_EQ(r.seconds.other_interior, 0.0);
+  EXPECT_EQ(r.mesh.complex.hexes.size(), 12u);
+}
+
+TEST_F(TetInterior, TetsTakeOneShellOnly) {
+  const SurfaceMesh one = split_lblock();
+  const SurfaceMesh two =
+      test::merged_surfaces({one, test::translated(one, Eigen::RowVector3d(10.0, 0.0, 0.0))});
+  MeshOptions options;
+  options.interior.mode = InteriorMode::Tets;
+  EXPECT_THROW((void)mesh_file(test::file_of(two, "two"), options), Unsupported);
+}
+
+}  // namespace
+}  // namespace stcweave::primal
