@@ -40,6 +40,7 @@ struct MeshArgs {
   std::string start = "harmonic";
   std::string pillow = "auto";
   std::string interior = "auto";
+  double tet_growth = primal::TetInteriorOptions{}.growth;
   int position_rounds = 100;
   int position_iterations = 3000;
   int position_newton_after = primal::PositionOptions{}.newton_after;
@@ -228,6 +229,7 @@ int run_mesh(const MeshArgs& a) {
   options.layer_start = a.start == "layers";
   options.pillow.mode = primal::pillow_mode_from_name(a.pillow);
   options.interior.mode = primal::interior_mode_from_name(a.interior);
+  options.interior.growth = a.tet_growth;
   options.position.max_outer_iterations = a.position_rounds;
   options.position.max_inner_iterations = a.position_iterations;
   options.position.theta = a.position_theta;
@@ -601,6 +603,11 @@ Action add_mesh_command(CLI::App& app) {
                   "a tetrahedral mesh; other surfaces are refused)")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "weave", "tets"}));
+  sub->add_option("--tet-growth", args->tet_growth,
+                  "tet interior: the interior tetrahedra may grow away from the boundary to this "
+                  "many times the boundary's edge length (1: Gmsh's sizes)")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 10.0));
   sub->add_option("--position-rounds", args->position_rounds,
                   "untangling: most rounds of (minimise, lower epsilon)")
       ->capture_default_str()

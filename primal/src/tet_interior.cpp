@@ -1,7 +1,12 @@
 #include "stcweave/primal/tet_interior.hpp"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
+#include <limits>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -58,13 +63,18 @@ namespace {
 /// The Gmsh model of one call, cleared on the way out whatever happens.
 class GmshModel {
  public:
-  GmshModel() : lock_(gmsh_detail::GmshSession::instance().mutex) { gmsh::clear(); }
+  GmshModel() : lock_(gmsh_detail::GmshSession::instance().mutex) {
+    gmsh::clear();
+    gmsh::model::mesh::setSizeCallback({});
+  }
   GmshModel(const GmshModel&) = delete;
   GmshModel& operator=(const GmshModel&) = delete;
   GmshModel(GmshModel&&) = delete;
   GmshModel& operator=(GmshModel&&) = delete;
   ~GmshModel() {
     try {
+      // Gmsh 4.8 keeps a size callback across clear(): ours must not outlive this call.
+      gmsh::model::mesh::setSizeCallback({});
       gmsh::clear();
     } catch (...) {  // NOLINT(bugprone-empty-catch): already failing or done
     }
@@ -106,10 +116,73 @@ double signed_volume(const Points& p, const stc::Tet& t) {
   return e1.dot(e2.cross(e3));
 }
 
+/// The nearest boundary vertex by a k-d tree (median splits, deterministic ties by index):
+/// the size Gmsh is to aim at anywhere inside is that vertex's edge length, grown with the
+/// distance to it.
+class BoundarySizes {
+ public:
+  BoundarySizes(std::vector<Eigen::Vector3d> points, std::vector<double> sizes)
+      : points_(std::move(points)), sizes_(std::move(sizes)), order_(points_.size()) {
+    for (std::size_t i = 0; i < order_.size(); ++i) order_[i] = i;
+    build(0, order_.size(), 0);
+  }
+
+  /// min(growth h, h + d / 2) for the nearest vertex (size h) at distance d.
+  [[nodiscard]] double size_at(const Eigen::Vector3d& x, double growth) const {
+    double best = std::numeric_limits<double>::infinity();
+    std::size_t nearest = 0;
+    search(0, order_.size(), 0, x, best, nearest);
+    const double h = sizes_[nearest];
+    return std::min(growth * h, h + 0.5 * std::sqrt(best));
+  }
+
+ private:
+  // The median of [lo, hi) along axis at `mid`, smaller coordinates before it.
+  void build(std::size_t lo, std::size_t hi, int axis) {
+    if (hi - lo <= 1) return;
+    const std::size_t mid = lo + (hi - lo) / 2;
+    const auto before = [&](std::size_t a, std::size_t b) {
+      const double ca = points_[a][axis];
+      const double cb = points_[b][axis];
+      return ca != cb ? ca < cb : a < b;
+    };
+    std::nth_element(order_.begin() + static_cast<std::ptrdiff_t>(lo),
+                     order_.begin() + static_cast<std::ptrdiff_t>(mid),
+                     order_.begin() + static_cast<std::ptrdiff_t>(hi), before);
+    build(lo, mid, (axis + 1) % 3);
+    build(mid + 1, hi, (axis + 1) % 3);
+  }
+
+  void search(std::size_t lo, std::size_t hi, int axis, const Eigen::Vector3d& x, double& best,
+              std::size_t& nearest) const {
+    if (lo >= hi) return;
+    const std::size_t mid = lo + (hi - lo) / 2;
+    const std::size_t p = order_[mid];
+    const double d = (points_[p] - x).squaredNorm();
+    if (d < best || (d == best && p < nearest)) {
+      best = d;
+      nearest = p;
+    }
+    const double delta = x[axis] - points_[p][axis];
+    const int next = (axis + 1) % 3;
+    if (delta < 0) {
+      search(lo, mid, next, x, best, nearest);
+      if (delta * delta <= best) search(mid + 1, hi, next, x, best, nearest);
+    } else {
+      search(mid + 1, hi, next, x, best, nearest);
+      if (delta * delta <= best) search(lo, mid, next, x, best, nearest);
+    }
+  }
+
+  std::vector<Eigen::Vector3d> points_;
+  std::vector<double> sizes_;
+  std::vector<std::size_t> order_;  // the tree: each range's median at its middle
+};
+
 }  // namespace
 
 weave::WeaveResult tet_interior(const SurfaceMesh& surface, const stc::TriangleSplit& split,
-                                const TetInteriorOptions& /*options*/, Points& positions,
+                                const TetInteriorOptions& options, Points& positions,
                                 TetInteriorReport* report) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::size_t num_surface = surface.surface.num_nodes;
@@ -132,6 +205,32 @@ weave::WeaveResult tet_interior(const SurfaceMesh& surface, const stc::TriangleS
   for (const auto& tri : split.triangles)
     for (const NodeId v : tri) triangle_tags.push_back(tag_of.at(v.index()));
 
+  // With growth, Gmsh's size anywhere is the nearest vertex's mean edge length, grown.
+  std::optional<BoundarySizes> sizes;
+  if (options.growth > 1.0) {
+    std::vector<double> length(split.vertices.size(), 0.0);
+    std::vector<int> count(split.vertices.size(), 0);
+    for (std::size_t t = 0; t < split.triangles.size(); ++t) {
+      for (std::size_t k = 0; k < 3; ++k) {
+        const std::size_t a = triangle_tags[3 * t + k] - 1;
+        const std::size_t b = triangle_tags[3 * t + (k + 1) % 3] - 1;
+        const double l = (surface.points.row(split.vertices[a].value()) -
+                          surface.points.row(split.vertices[b].value()))
+                             .norm();
+        length[a] += l;
+        length[b] += l;
+        ++count[a];
+        ++count[b];
+      }
+    }
+    std::vector<Eigen::Vector3d> at(split.vertices.size());
+    for (std::size_t k = 0; k < split.vertices.size(); ++k) {
+      length[k] /= std::max(count[k], 1);
+      at[k] = surface.points.row(split.vertices[k].value()).transpose();
+    }
+    sizes.emplace(std::move(at), std::move(length));
+  }
+
   std::vector<std::size_t> interior_tags;
   std::vector<double> interior_coords;
   std::vector<std::size_t> tet_nodes;
@@ -146,6 +245,14 @@ weave::WeaveResult tet_interior(const SurfaceMesh& surface, const stc::TriangleS
       const int loop = gmsh::model::geo::addSurfaceLoop({s});
       const int v = gmsh::model::geo::addVolume({loop});
       gmsh::model::geo::synchronize();
+      if (sizes) {
+        gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
+        gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
+        gmsh::model::mesh::setSizeCallback(
+            [&](int /*dim*/, int /*tag*/, double x, double y, double z) {
+              return sizes->size_at(Eigen::Vector3d(x, y, z), options.growth);
+            });
+      }
       gmsh::model::mesh::generate(3);
       std::vector<double> parametric;
       gmsh::model::mesh::getNodes(interior_tags, interior_coords, parametric, 3, v, false, false);

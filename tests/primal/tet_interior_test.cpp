@@ -6,9 +6,11 @@
 #include <set>
 #include <utility>
 
+#include "stcweave/primal/cad.hpp"
 #include "stcweave/primal/pipeline.hpp"
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/stc/validate.hpp"
+#include "support/cad.hpp"
 #include "support/shapes.hpp"
 
 namespace stcweave::primal {
@@ -129,6 +131,40 @@ TEST_F(TetInterior, PipelineKeepsTheBetterInteriorAndSaysWhy) {
   EXPECT_EQ(best.interior.used, &expected == &tets) << best.interior.reason;
   EXPECT_EQ(best.mesh.complex.hexes, expected.mesh.complex.hexes);
   EXPECT_TRUE(best.mesh.points.isApprox(expected.mesh.points, 0.0));
+}
+
+TEST_F(TetInterior, GrowthGivesFewerTetsInsideAndKeepsThemValid) {
+  // A 4 x 4 x 4 box whose quads are split into triangles: room inside to grow.
+  const SurfaceMesh surface = triangle_split_of(test::box_surface(4, 4, 4));
+  const std::optional<stc::TriangleSplit> split = stc::recognise_triangle_split(surface.surface);
+  ASSERT_TRUE(split.has_value());
+  std::array<std::size_t, 2> tets{};
+  for (std::size_t i = 0; i < 2; ++i) {
+    TetInteriorOptions options;
+    options.growth = i == 0 ? 1.0 : 2.0;
+    Points positions;
+    TetInteriorReport report;
+    const weave::WeaveResult r = tet_interior(surface, *split, options, positions, &report);
+    tets[i] = report.tets;
+    const stc::ValidationReport v = stc::validate_hex_complex(r.complex, &surface.surface);
+    EXPECT_TRUE(v.valid) << v.summary();
+    EXPECT_EQ(summarize_quality(HexMesh{positions, r.complex}).inverted, 0u);
+  }
+  EXPECT_LT(tets[1], tets[0]);
+}
+
+TEST_F(TetInterior, LeavesGmshAsItFoundItForTheCadFrontEnd) {
+  // The growth is a size callback in Gmsh's one session, which Gmsh 4.8 keeps across
+  // clear(): a CAD surface meshed after a tet interior must be the one meshed before it.
+  const CadSurface before =
+      mesh_cad_surface(test::repo_data("plate_slot.step"), test::cad_options(0.5));
+  const SurfaceMesh surface = triangle_split_of(test::box_surface(4, 4, 4));
+  Points positions;
+  (void)tet_interior(surface, *stc::recognise_triangle_split(surface.surface), {}, positions);
+  const CadSurface after =
+      mesh_cad_surface(test::repo_data("plate_slot.step"), test::cad_options(0.5));
+  EXPECT_EQ(after.file.quads, before.file.quads);
+  EXPECT_TRUE(after.file.points.isApprox(before.file.points, 0.0));
 }
 
 TEST_F(TetInterior, TheSameInputGivesTheSameMesh) {
