@@ -490,7 +490,8 @@ int run_mesh(const MeshArgs& a) {
       std::cout << " (after untangling; " << r.position.inverted_before << " before; "
                 << r.position.stop << ")\n";
     } else {
-      std::cout << " (harmonic placement, not untangled)\n";
+      std::cout << (r.interior.used ? " (the tet split's placement, not untangled)\n"
+                                    : " (harmonic placement, not untangled)\n");
     }
     if (options.untangle) {
       std::cout << "shape      min scaled Jacobian " << r.position.min_scaled_jacobian_before

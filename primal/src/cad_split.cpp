@@ -2,6 +2,8 @@
 #if STCWEAVE_HAVE_GMSH
 #include "cad_split.hpp"
 
+#include "gmsh_session.hpp"
+
 #include <gmsh.h>
 
 #include <algorithm>
@@ -22,19 +24,6 @@ namespace occ = gmsh::model::occ;
 using Vec = std::array<double, 3>;
 
 const double kPi = std::acos(-1.0);
-
-/// What a Gmsh call threw, as text (Gmsh 4.8 throws std::string).
-std::string reason_of_current_exception() {
-  try {
-    throw;
-  } catch (const std::string& s) {
-    return s;
-  } catch (const std::exception& e) {
-    return e.what();
-  } catch (...) {
-    return "unknown Gmsh error";
-  }
-}
 
 Vec sub(const Vec& a, const Vec& b) {
   return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
@@ -670,12 +659,12 @@ SplitResult split_into_blocks(const std::vector<std::pair<int, int> >& volumes, 
     result.how = what;
   } catch (...) {
     result.dropped = (what.empty() ? std::string("splitting into blocks") : what) +
-                     " failed in Gmsh: " + reason_of_current_exception();
+                     " failed in Gmsh: " + gmsh_detail::gmsh_reason();
     try {
       remove_new(before);
     } catch (...) {
       throw InternalError("the CAD model could not be restored after " + result.dropped + ": " +
-                          reason_of_current_exception() + "; this is a bug");
+                          gmsh_detail::gmsh_reason() + "; this is a bug");
     }
   }
   return result;

@@ -1,6 +1,6 @@
 #pragma once
 // Private to primal, compiled with Gmsh only (STCWEAVE_HAVE_GMSH): the one Gmsh session of
-// the process, shared by the CAD front end (cad.cpp) and the tetrahedral interior
+// the process, shared by the CAD front end (cad.cpp, cad_split.cpp) and the tetrahedral interior
 // (tet_interior.cpp).
 #include <gmsh.h>
 

@@ -2,10 +2,12 @@
 
 #include <chrono>
 #include <exception>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "position_pinch.hpp"
 #include "stcweave/primal/cut.hpp"
@@ -37,14 +39,19 @@ std::string figures(const MeshResult& r) {
   return out.str();
 }
 
-/// The better of two meshes of the same surface: fewer inverted hexes, then the larger
-/// minimum scaled Jacobian, then fewer hexes; `a` on a tie.
-bool better_or_equal(const QualitySummary& a, const QualitySummary& b) {
+}  // namespace
+
+bool better_or_equal(const MeshResult& x, const MeshResult& y) {
+  if (x.validation.valid != y.validation.valid) return x.validation.valid;
+  const QualitySummary& a = x.quality;
+  const QualitySummary& b = y.quality;
   if (a.inverted != b.inverted) return a.inverted < b.inverted;
   if (a.min_scaled_jacobian != b.min_scaled_jacobian)
     return a.min_scaled_jacobian > b.min_scaled_jacobian;
   return a.hexes <= b.hexes;
 }
+
+namespace {
 
 /// `InteriorMode::Auto` on a triangle-split surface: the whole pipeline once with each
 /// interior, the better kept. Nothing when the surface is not triangle-split (or Gmsh is
@@ -52,16 +59,36 @@ bool better_or_equal(const QualitySummary& a, const QualitySummary& b) {
 std::optional<MeshResult> compare_interiors(const MeshFile& file, const MeshOptions& options) {
   if (!has_tet_interior_support()) return std::nullopt;
   try {
+    // Recognition first (cheap, on the surface as the pipeline orients it), the diagnosis
+    // only for a surface that is triangle-split.
+    SurfaceMesh oriented = surface_of(file);
+    (void)orient_outward(oriented);
+    if (!stc::recognise_triangle_split(oriented.surface)) return std::nullopt;
     const SurfaceDiagnosis d = diagnose(file);
     if (d.components != 1 || !d.closed || !d.manifold) return std::nullopt;
-    if (!stc::recognise_triangle_split(surface_of(file).surface)) return std::nullopt;
   } catch (const Error&) {
     return std::nullopt;  // the woven path reports what is wrong with the file
   }
+  // Each run says which it is; the weave's trace reaches the caller only if it is kept (or
+  // if both fail: then it says why the weave did).
+  const auto labelled = [&options](const char* which) {
+    return [&options, which](const std::string& stage) {
+      if (options.on_stage) options.on_stage(std::string(which) + stage);
+    };
+  };
+  auto buffered = std::make_shared<std::vector<weave::TraceEvent>>();
+  const auto replay_trace = [&options, buffered] {
+    if (options.weave.on_trace)
+      for (const weave::TraceEvent& e : *buffered) options.weave.on_trace(e);
+  };
   MeshOptions weave_only = options;
   weave_only.interior.mode = InteriorMode::Weave;
+  weave_only.on_stage = labelled("woven interior: ");
+  if (options.weave.on_trace)
+    weave_only.weave.on_trace = [buffered](const weave::TraceEvent& e) { buffered->push_back(e); };
   MeshOptions tets_only = options;
   tets_only.interior.mode = InteriorMode::Tets;
+  tets_only.on_stage = labelled("tet interior: ");
   std::optional<MeshResult> woven;
   std::optional<MeshResult> tets;
   std::exception_ptr weave_error;
@@ -80,6 +107,7 @@ std::optional<MeshResult> compare_interiors(const MeshFile& file, const MeshOpti
   }
   const double tet_seconds = clock.lap();
   if (!tets) {
+    replay_trace();
     if (weave_error) std::rethrow_exception(weave_error);
     woven->interior.triangle_split = true;
     woven->interior.compared = true;
@@ -100,8 +128,8 @@ std::optional<MeshResult> compare_interiors(const MeshFile& file, const MeshOpti
     tets->interior.reason = "auto: tets (" + why + ")";
     return tets;
   }
-  const bool keep_tets = better_or_equal(tets->quality, woven->quality) &&
-                         !better_or_equal(woven->quality, tets->quality);
+  const bool keep_tets = better_or_equal(*tets, *woven) && !better_or_equal(*woven, *tets);
+  if (!keep_tets) replay_trace();
   MeshResult& kept = keep_tets ? *tets : *woven;
   kept.seconds.other_interior = (keep_tets ? *woven : *tets).seconds.total();
   kept.interior.triangle_split = true;
@@ -137,7 +165,10 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
   // themselves).
   bool whole = r.diagnosis.components <= 1;
   for (const auto& g : r.diagnosis.genus_per_component) whole = whole && g && *g == 0;
-  if (r.diagnosis.handles && !r.diagnosis.handles->decided) {
+  // The tet interior needs no handle cycle: a tetrahedral mesh of the solid exists whatever
+  // they are (an odd one is still refused above, by require_weavable).
+  if (r.diagnosis.handles && !r.diagnosis.handles->decided &&
+      options.interior.mode != InteriorMode::Tets) {
     throw Unsupported(file.path + ": cannot tell which cycles bound inside the solid (" +
                       r.diagnosis.handles->undecided_reason +
                       "), so whether a hex mesh exists is undecided; docs/topology.md lists "

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <new>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -234,10 +235,12 @@ weave::WeaveResult tet_interior(const SurfaceMesh& surface, const stc::TriangleS
   std::vector<std::size_t> interior_tags;
   std::vector<double> interior_coords;
   std::vector<std::size_t> tet_nodes;
-  {
+  std::vector<std::size_t> surface_tags;
+  std::vector<double> surface_coords;
+  try {
     const GmshModel model;
     set_tet_options();
-    try {
+    {
       gmsh::model::add("stcweave_tet_interior");
       const int s = gmsh::model::addDiscreteEntity(2);
       gmsh::model::mesh::addNodes(2, s, node_tags, coords);
@@ -256,14 +259,32 @@ weave::WeaveResult tet_interior(const SurfaceMesh& surface, const stc::TriangleS
       gmsh::model::mesh::generate(3);
       std::vector<double> parametric;
       gmsh::model::mesh::getNodes(interior_tags, interior_coords, parametric, 3, v, false, false);
+      gmsh::model::mesh::getNodes(surface_tags, surface_coords, parametric, 2, s, false, false);
       std::vector<std::size_t> tet_tags;
       gmsh::model::mesh::getElementsByType(4, tet_tags, tet_nodes, v);
-    } catch (...) {
-      throw InvalidInput("Gmsh could not tetrahedralise the solid bounded by the surface's " +
-                         std::to_string(split.triangles.size()) +
-                         " triangles: " + gmsh_detail::gmsh_reason() +
-                         " (use --interior weave to weave it instead)");
     }
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (...) {
+    throw InvalidInput("Gmsh could not tetrahedralise the solid bounded by the surface's " +
+                       std::to_string(split.triangles.size()) + " triangles: " +
+                       gmsh_detail::gmsh_reason() + " (use --interior weave to weave it instead)");
+  }
+  // The boundary nodes must come back as they went in: tags 1 .. V at the same places.
+  bool kept = surface_tags.size() == node_tags.size();
+  for (std::size_t k = 0; kept && k < surface_tags.size(); ++k) {
+    const std::size_t tag = surface_tags[k];
+    kept = tag >= 1 && tag <= node_tags.size();
+    for (int c = 0; kept && c < 3; ++c)
+      kept = surface_coords[3 * k + static_cast<std::size_t>(c)] ==
+             coords[3 * (tag - 1) + static_cast<std::size_t>(c)];
+  }
+  if (!kept) {
+    throw InvalidInput("Gmsh changed the boundary nodes while tetrahedralising the solid (" +
+                       std::to_string(surface_tags.size()) + " nodes on the surface after, " +
+                       std::to_string(node_tags.size()) +
+                       " before): the surface's triangles could not be kept; use --interior "
+                       "weave");
   }
   if (tet_nodes.empty()) {
     throw InvalidInput("Gmsh made no tetrahedron in the solid bounded by the surface's " +

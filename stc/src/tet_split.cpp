@@ -297,6 +297,13 @@ TetSplit split_tets(const TriangleSplit& split, std::size_t num_nodes,
                                    face[face_key(p, q, s)], body, face[face_key(p, r, s)]});
     }
   }
+  for (const auto& [key, node] : face_node) {
+    if (node.second != 2) {
+      throw InvalidInput("tet split: the interior face " + NodeId(key[0]).str() + "-" +
+                         NodeId(key[1]).str() + "-" + NodeId(key[2]).str() +
+                         " is a face of one tetrahedron only (the tetrahedra leave a gap)");
+    }
+  }
   for (std::size_t t = 0; t < boundary_face_tets.size(); ++t) {
     if (boundary_face_tets[t] != 1) {
       const auto& tri = split.triangles[t];

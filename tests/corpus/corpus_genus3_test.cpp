@@ -79,7 +79,6 @@ TEST(CorpusGenus3, PartA6TetInteriorHasNoInvertedHex) {
   EXPECT_EQ(r.woven.complex.hexes.size(), 4 * r.interior.tets);  // four hexes per tet
   EXPECT_EQ(r.quality.inverted, 0u) << r.interior.reason;
   EXPECT_GT(r.quality.min_scaled_jacobian, 0.0);
-  EXPECT_TRUE(r.solids.cuts.empty());        // no handle cut: the tets go round the handle
   EXPECT_GT(r.seconds.other_interior, 0.0);  // the weave ran too
 }
 

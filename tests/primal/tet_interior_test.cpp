@@ -2,9 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <set>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "stcweave/primal/cad.hpp"
 #include "stcweave/primal/pipeline.hpp"
@@ -123,14 +126,62 @@ TEST_F(TetInterior, PipelineKeepsTheBetterInteriorAndSaysWhy) {
   EXPECT_GT(best.seconds.other_interior, 0.0);
   // What auto kept is the better of the two runs above, run for run.
   const MeshResult& expected =
-      (tets.quality.inverted < woven.quality.inverted ||
-       (tets.quality.inverted == woven.quality.inverted &&
-        tets.quality.min_scaled_jacobian > woven.quality.min_scaled_jacobian))
-          ? tets
-          : woven;
+      better_or_equal(tets, woven) && !better_or_equal(woven, tets) ? tets : woven;
   EXPECT_EQ(best.interior.used, &expected == &tets) << best.interior.reason;
   EXPECT_EQ(best.mesh.complex.hexes, expected.mesh.complex.hexes);
   EXPECT_TRUE(best.mesh.points.isApprox(expected.mesh.points, 0.0));
+}
+
+TEST(TetInteriorChoice, ValidFirstThenInvertedThenMinimumThenHexes) {
+  const auto result = [](bool valid, std::size_t inverted, double min_sj, std::size_t hexes) {
+    MeshResult r;
+    r.validation.valid = valid;
+    r.quality.inverted = inverted;
+    r.quality.min_scaled_jacobian = min_sj;
+    r.quality.hexes = hexes;
+    return r;
+  };
+  const auto strictly = [](const MeshResult& a, const MeshResult& b) {
+    return better_or_equal(a, b) && !better_or_equal(b, a);
+  };
+  EXPECT_TRUE(strictly(result(true, 9, -0.5, 900), result(false, 0, 0.9, 10)));
+  EXPECT_TRUE(strictly(result(true, 0, 0.1, 900), result(true, 1, 0.9, 10)));
+  EXPECT_TRUE(strictly(result(true, 0, 0.3, 900), result(true, 0, 0.2, 10)));
+  EXPECT_TRUE(strictly(result(true, 0, 0.3, 10), result(true, 0, 0.3, 11)));
+  // A tie either way: auto keeps the weave.
+  EXPECT_TRUE(better_or_equal(result(true, 0, 0.3, 10), result(true, 0, 0.3, 10)));
+}
+
+TEST_F(TetInterior, AFailedWeaveLeavesTheTetsAndNoTraceOfIt) {
+  const MeshFile file = test::file_of(split_lblock(), "split-lblock");
+  MeshOptions options;
+  options.weave.max_rules = 1;  // the weave gives up after one rule (no rescue with a budget)
+  std::size_t events = 0;
+  options.weave.on_trace = [&events](const weave::TraceEvent&) { ++events; };
+  std::vector<std::string> stages;
+  options.on_stage = [&stages](const std::string& s) { stages.push_back(s); };
+  const MeshResult r = mesh_file(file, options);
+  EXPECT_TRUE(r.interior.used);
+  EXPECT_NE(r.interior.reason.find("the weave failed"), std::string::npos) << r.interior.reason;
+  EXPECT_EQ(events, 0u);  // the failed weave's trace is not the kept mesh's
+  EXPECT_NE(std::find(stages.begin(), stages.end(), "woven interior: weave"), stages.end());
+  EXPECT_NE(std::find(stages.begin(), stages.end(), "tet interior: weave"), stages.end());
+  // With --interior weave the same budget is an error.
+  options.interior.mode = InteriorMode::Weave;
+  EXPECT_THROW((void)mesh_file(file, options), WeaveError);
+}
+
+TEST_F(TetInterior, AKeptWeaveKeepsItsTrace) {
+  // The 2 x 2 x 2 box is the split octahedron: its weave (8 hexes of scaled Jacobian 1) wins.
+  MeshOptions options;
+  std::size_t events = 0;
+  options.weave.on_trace = [&events](const weave::TraceEvent&) { ++events; };
+  const MeshResult r = mesh_file(test::file_of(test::box_surface(2, 2, 2), "box2"), options);
+  EXPECT_TRUE(r.interior.triangle_split);
+  EXPECT_TRUE(r.interior.compared);
+  EXPECT_FALSE(r.interior.used) << r.interior.reason;
+  EXPECT_EQ(r.mesh.complex.hexes.size(), 8u);
+  EXPECT_GT(events, 0u);
 }
 
 TEST_F(TetInterior, GrowthGivesFewerTetsInsideAndKeepsThemValid) {

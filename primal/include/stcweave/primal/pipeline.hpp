@@ -108,6 +108,11 @@ struct MeshResult {
   StageSeconds seconds;
 };
 
+/// The order `InteriorMode::Auto` keeps two meshes of one surface in: a valid complex first,
+/// then fewer inverted hexes, then the larger minimum scaled Jacobian, then fewer hexes.
+/// \return true when `a` is at least as good as `b`.
+[[nodiscard]] bool better_or_equal(const MeshResult& a, const MeshResult& b);
+
 /// Meshes the quad surface of `file` (its quads, or the boundary of its hexes).
 /// \throw TopologyError for a surface that cannot be woven (see `require_weavable`).
 /// \throw TopologyError for an odd handle cycle (no hex mesh exists).

@@ -51,10 +51,12 @@ struct TetInteriorOptions {
 
 /// What the stage did.
 struct TetInteriorReport {
-  bool triangle_split = false;  ///< the surface was recognised as triangle-split
-  bool used = false;            ///< the output's interior is the tet split
-  bool compared = false;        ///< auto positioned both interiors and chose
-  std::string reason;           ///< one line: why this interior
+  /// The surface was recognised as triangle-split (only looked for with `tets`, and with
+  /// `auto` when Gmsh is there; false with `weave`).
+  bool triangle_split = false;
+  bool used = false;      ///< the output's interior is the tet split
+  bool compared = false;  ///< auto positioned both interiors and chose
+  std::string reason;     ///< one line: why this interior
   std::size_t triangles = 0;
   std::size_t tets = 0;
   std::size_t interior_vertices = 0;  ///< tet vertices that Gmsh put inside

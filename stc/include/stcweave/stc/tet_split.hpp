@@ -54,7 +54,8 @@ using Tet = std::array<NodeId, 4>;
 /// The four-hex split of a tetrahedral mesh.
 struct TetSplit {
   /// Nodes 0 .. num_nodes - 1 are the tet vertices' ids as given (the surface's nodes first);
-  /// the nodes added follow: interior edges' middles, interior faces' centres, tet centres.
+  /// the nodes added follow, tet by tet in the order given: the middles of its edges and the
+  /// centres of its faces not met before (interior ones only), then its centre.
   HexComplex complex;
   /// Per added node (complex node `first_added + i`), the tet vertices it is the centre of
   /// (2 for an edge, 3 for a face, 4 for a tet).
@@ -73,7 +74,7 @@ struct TetSplit {
 ///      edge nodes and centres and must not appear in `tets`.
 /// \throw InvalidInput when a tet repeats a node, uses a surface edge node or centre, or a
 ///        node id of `num_nodes` or more, or when a boundary triangle is not the face of
-///        exactly one tet, or a face is shared by more than two tets.
+///        exactly one tet, or an interior face not of exactly two.
 [[nodiscard]] TetSplit split_tets(const TriangleSplit& split, std::size_t num_nodes,
                                   const std::vector<Tet>& tets);
 
