@@ -1,5 +1,6 @@
 #include "stcweave/primal/pipeline.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <exception>
 #include <memory>
@@ -53,6 +54,18 @@ bool better_or_equal(const MeshResult& x, const MeshResult& y) {
 
 namespace {
 
+/// A necessary condition, in one pass over the quads, so that `auto` orients no surface that
+/// cannot be triangle-split (boxes, every transfinite surface): the quads come in threes, and
+/// each triangle's centre lies in exactly three of them.
+bool may_be_triangle_split(const stc::QuadSurface& surface) {
+  if (surface.quads.empty() || surface.quads.size() % 3 != 0) return false;
+  std::vector<std::size_t> valence(surface.num_nodes, 0);
+  for (const stc::Quad& q : surface.quads)
+    for (const NodeId v : q) ++valence[v.index()];
+  const auto in_three = static_cast<std::size_t>(std::count(valence.begin(), valence.end(), 3));
+  return 3 * in_three >= surface.quads.size();
+}
+
 /// `InteriorMode::Auto` on a triangle-split surface: the whole pipeline once with each
 /// interior, the better kept. Nothing when the surface is not triangle-split (or Gmsh is
 /// missing, or the file is not one readable shell): the caller weaves as usual.
@@ -62,6 +75,7 @@ std::optional<MeshResult> compare_interiors(const MeshFile& file, const MeshOpti
     // Recognition first (cheap, on the surface as the pipeline orients it), the diagnosis
     // only for a surface that is triangle-split.
     SurfaceMesh oriented = surface_of(file);
+    if (!may_be_triangle_split(oriented.surface)) return std::nullopt;
     (void)orient_outward(oriented);
     if (!stc::recognise_triangle_split(oriented.surface)) return std::nullopt;
     const SurfaceDiagnosis d = diagnose(file);
@@ -132,15 +146,12 @@ std::optional<MeshResult> compare_interiors(const MeshFile& file, const MeshOpti
   if (!keep_tets) replay_trace();
   MeshResult& kept = keep_tets ? *tets : *woven;
   kept.seconds.other_interior = (keep_tets ? *woven : *tets).seconds.total();
-  kept.interior.triangle_split = true;
-  kept.interior.compared = true;
-  kept.interior.triangles = tets->interior.triangles;
-  kept.interior.tets = tets->interior.tets;
-  kept.interior.interior_vertices = tets->interior.interior_vertices;
-  kept.interior.seconds = tets->interior.seconds;
-  kept.interior.used = keep_tets;
-  kept.interior.reason = std::string("auto: ") + (keep_tets ? "tets" : "woven") +
-                         " kept (tets: " + figures(*tets) + "; woven: " + figures(*woven) + ")";
+  // The tet run's report (its counts), whichever mesh is kept.
+  TetInteriorReport report = tets->interior;
+  report.used = keep_tets;
+  report.reason = std::string("auto: ") + (keep_tets ? "tets" : "woven") +
+                  " kept (tets: " + figures(*tets) + "; woven: " + figures(*woven) + ")";
+  kept.interior = std::move(report);
   return std::move(kept);
 }
 

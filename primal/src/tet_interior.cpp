@@ -194,7 +194,7 @@ weave::WeaveResult tet_interior(const SurfaceMesh& surface, const stc::TriangleS
   // Gmsh tags: vertex k of the split is tag k + 1.
   std::vector<std::size_t> node_tags(split.vertices.size());
   std::vector<double> coords(3 * split.vertices.size());
-  std::unordered_map<std::size_t, std::size_t> tag_of;  // surface node -> tag
+  std::vector<std::size_t> tag_of(num_surface, 0);  // surface node -> tag
   for (std::size_t k = 0; k < split.vertices.size(); ++k) {
     node_tags[k] = k + 1;
     tag_of[split.vertices[k].index()] = k + 1;
@@ -204,7 +204,7 @@ weave::WeaveResult tet_interior(const SurfaceMesh& surface, const stc::TriangleS
   std::vector<std::size_t> triangle_tags;
   triangle_tags.reserve(3 * split.triangles.size());
   for (const auto& tri : split.triangles)
-    for (const NodeId v : tri) triangle_tags.push_back(tag_of.at(v.index()));
+    for (const NodeId v : tri) triangle_tags.push_back(tag_of[v.index()]);
 
   // With growth, Gmsh's size anywhere is the nearest vertex's mean edge length, grown.
   std::optional<BoundarySizes> sizes;
@@ -240,29 +240,27 @@ weave::WeaveResult tet_interior(const SurfaceMesh& surface, const stc::TriangleS
   try {
     const GmshModel model;
     set_tet_options();
-    {
-      gmsh::model::add("stcweave_tet_interior");
-      const int s = gmsh::model::addDiscreteEntity(2);
-      gmsh::model::mesh::addNodes(2, s, node_tags, coords);
-      gmsh::model::mesh::addElementsByType(s, 2, {}, triangle_tags);
-      const int loop = gmsh::model::geo::addSurfaceLoop({s});
-      const int v = gmsh::model::geo::addVolume({loop});
-      gmsh::model::geo::synchronize();
-      if (sizes) {
-        gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
-        gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
-        gmsh::model::mesh::setSizeCallback(
-            [&](int /*dim*/, int /*tag*/, double x, double y, double z) {
-              return sizes->size_at(Eigen::Vector3d(x, y, z), options.growth);
-            });
-      }
-      gmsh::model::mesh::generate(3);
-      std::vector<double> parametric;
-      gmsh::model::mesh::getNodes(interior_tags, interior_coords, parametric, 3, v, false, false);
-      gmsh::model::mesh::getNodes(surface_tags, surface_coords, parametric, 2, s, false, false);
-      std::vector<std::size_t> tet_tags;
-      gmsh::model::mesh::getElementsByType(4, tet_tags, tet_nodes, v);
+    gmsh::model::add("stcweave_tet_interior");
+    const int s = gmsh::model::addDiscreteEntity(2);
+    gmsh::model::mesh::addNodes(2, s, node_tags, coords);
+    gmsh::model::mesh::addElementsByType(s, 2, {}, triangle_tags);
+    const int loop = gmsh::model::geo::addSurfaceLoop({s});
+    const int v = gmsh::model::geo::addVolume({loop});
+    gmsh::model::geo::synchronize();
+    if (sizes) {
+      gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
+      gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
+      gmsh::model::mesh::setSizeCallback(
+          [&](int /*dim*/, int /*tag*/, double x, double y, double z) {
+            return sizes->size_at(Eigen::Vector3d(x, y, z), options.growth);
+          });
     }
+    gmsh::model::mesh::generate(3);
+    std::vector<double> parametric;
+    gmsh::model::mesh::getNodes(interior_tags, interior_coords, parametric, 3, v, false, false);
+    gmsh::model::mesh::getNodes(surface_tags, surface_coords, parametric, 2, s, false, false);
+    std::vector<std::size_t> tet_tags;
+    gmsh::model::mesh::getElementsByType(4, tet_tags, tet_nodes, v);
   } catch (const std::bad_alloc&) {
     throw;
   } catch (...) {

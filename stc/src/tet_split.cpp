@@ -71,6 +71,30 @@ std::vector<int> chosen_colour(const std::vector<int>& colour,
   return chosen;
 }
 
+/// The nodes of `in_graph` of the colour, in the 2-colouring of `neighbours`, whose nodes
+/// all lie in `valence` quads (per component, as `chosen_colour` picks it). Nothing when the
+/// graph is not bipartite or a component has no such colour.
+std::optional<std::vector<bool>> class_of_valence(
+    const std::vector<std::vector<std::size_t>>& neighbours, const std::vector<bool>& in_graph,
+    const std::vector<std::vector<std::size_t>>& node_quads, std::size_t valence,
+    bool prefer_larger) {
+  std::vector<int> colour;
+  std::vector<std::size_t> component;
+  if (!two_colour(neighbours, in_graph, colour, component)) return std::nullopt;
+  const std::size_t n = neighbours.size();
+  std::vector<bool> fits(n);
+  for (std::size_t u = 0; u < n; ++u) fits[u] = node_quads[u].size() == valence;
+  const std::vector<int> chosen = chosen_colour(colour, component, in_graph, fits, prefer_larger);
+  std::vector<bool> in_class(n, false);
+  for (std::size_t u = 0; u < n; ++u) {
+    if (!in_graph[u]) continue;
+    const int c = chosen[component[u]];
+    if (c < 0) return std::nullopt;
+    in_class[u] = colour[u] == c;
+  }
+  return in_class;
+}
+
 std::pair<std::size_t, std::size_t> edge_key(NodeId a, NodeId b) {
   return std::minmax(a.index(), b.index());
 }
@@ -103,19 +127,10 @@ std::optional<TriangleSplit> recognise_triangle_split(const QuadSurface& surface
   for (std::size_t u = 0; u < n; ++u) used[u] = !node_quads[u].empty();
 
   // Edge nodes: one colour of the quad edges' 2-colouring, every node in four quads.
-  std::vector<int> colour;
-  std::vector<std::size_t> component;
-  if (!two_colour(edges, used, colour, component)) return std::nullopt;
-  std::vector<bool> valence4(n);
-  for (std::size_t u = 0; u < n; ++u) valence4[u] = node_quads[u].size() == 4;
-  const std::vector<int> edge_colour = chosen_colour(colour, component, used, valence4, false);
-  std::vector<bool> is_edge_node(n, false);
-  for (std::size_t u = 0; u < n; ++u) {
-    if (!used[u]) continue;
-    const int c = edge_colour[component[u]];
-    if (c < 0) return std::nullopt;
-    is_edge_node[u] = colour[u] == c;
-  }
+  const std::optional<std::vector<bool>> edge_nodes =
+      class_of_valence(edges, used, node_quads, 4, false);
+  if (!edge_nodes) return std::nullopt;
+  const std::vector<bool>& is_edge_node = *edge_nodes;
 
   // Centres and vertices: the quads' other diagonals, 2-coloured; centres are in three quads.
   std::vector<std::vector<std::size_t>> diagonals(n);
@@ -129,17 +144,10 @@ std::optional<TriangleSplit> recognise_triangle_split(const QuadSurface& surface
     diagonals[b].push_back(a);
     corner[a] = corner[b] = true;
   }
-  if (!two_colour(diagonals, corner, colour, component)) return std::nullopt;
-  std::vector<bool> valence3(n);
-  for (std::size_t u = 0; u < n; ++u) valence3[u] = node_quads[u].size() == 3;
-  const std::vector<int> centre_colour = chosen_colour(colour, component, corner, valence3, true);
-  std::vector<bool> is_centre(n, false);
-  for (std::size_t u = 0; u < n; ++u) {
-    if (!corner[u]) continue;
-    const int c = centre_colour[component[u]];
-    if (c < 0) return std::nullopt;
-    is_centre[u] = colour[u] == c;
-  }
+  const std::optional<std::vector<bool>> centres =
+      class_of_valence(diagonals, corner, node_quads, 3, true);
+  if (!centres) return std::nullopt;
+  const std::vector<bool>& is_centre = *centres;
 
   // One triangle per centre: its three quads (vertex, edge node, centre, edge node) in
   // surface order, chained by their shared edge nodes.

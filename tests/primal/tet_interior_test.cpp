@@ -3,10 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <map>
-#include <set>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "stcweave/primal/cad.hpp"
@@ -19,45 +16,7 @@
 namespace stcweave::primal {
 namespace {
 
-/// The triangle-split surface of a quad surface: each quad cut into two triangles along its
-/// diagonal (0, 2), then each triangle into three quads at its centre and edge middles.
-/// Written here, independently of stc::recognise_triangle_split.
-SurfaceMesh triangle_split_of(const SurfaceMesh& quads) {
-  std::vector<std::array<NodeId, 3>> triangles;
-  for (const stc::Quad& q : quads.surface.quads) {
-    triangles.push_back({q[0], q[1], q[2]});
-    triangles.push_back({q[0], q[2], q[3]});
-  }
-  std::vector<Eigen::RowVector3d> points;
-  for (Eigen::Index i = 0; i < quads.points.rows(); ++i) points.emplace_back(quads.points.row(i));
-  std::map<std::pair<int, int>, NodeId> middle;
-  const auto middle_of = [&](NodeId a, NodeId b) {
-    const std::pair<int, int> key(std::min(a.value(), b.value()), std::max(a.value(), b.value()));
-    const auto [it, inserted] = middle.emplace(key, NodeId(points.size()));
-    if (inserted) {
-      const Eigen::RowVector3d m = 0.5 * (points[a.index()] + points[b.index()]);
-      points.push_back(m);
-    }
-    return it->second;
-  };
-  SurfaceMesh out;
-  for (const auto& t : triangles) {
-    const NodeId c(points.size());
-    const Eigen::RowVector3d centre =
-        (points[t[0].index()] + points[t[1].index()] + points[t[2].index()]) / 3.0;
-    points.push_back(centre);
-    for (std::size_t k = 0; k < 3; ++k) {
-      const NodeId v = t[k];
-      out.surface.quads.push_back(
-          {v, middle_of(v, t[(k + 1) % 3]), c, middle_of(t[(k + 2) % 3], v)});
-    }
-  }
-  out.surface.num_nodes = points.size();
-  out.points.resize(static_cast<Eigen::Index>(points.size()), 3);
-  for (std::size_t i = 0; i < points.size(); ++i)
-    out.points.row(static_cast<Eigen::Index>(i)) = points[i];
-  return out;
-}
+using test::triangle_split_of;
 
 /// The voxel L-block (10 unit cubes), its quads split into triangles and those into quads:
 /// a non-convex triangle-split surface like those CAD gives.

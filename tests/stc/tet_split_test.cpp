@@ -2,8 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
-#include <map>
 #include <set>
 #include <utility>
 #include <vector>
@@ -18,36 +18,11 @@ namespace {
 using Triangle = std::array<int, 3>;
 using Point = std::array<double, 3>;
 
-/// A triangle mesh split into quads, built independently of the library: vertices keep
-/// their ids 0 .. V-1, then one node per edge (in order of first use), then one per triangle.
-struct Built {
-  QuadSurface surface;
-  std::map<std::pair<int, int>, NodeId> edge_node;
-  std::vector<NodeId> centre;
-};
+using Built = test::SplitTriangles;
 
+/// The split of `triangles` over `num_vertices` vertices, topology only (points at 0).
 Built split_by_hand(const std::vector<Triangle>& triangles, int num_vertices) {
-  Built b;
-  int next = num_vertices;
-  for (const Triangle& t : triangles) {
-    for (int k = 0; k < 3; ++k) {
-      const auto key = std::minmax(t[k], t[(k + 1) % 3]);
-      if (b.edge_node.find(key) == b.edge_node.end()) b.edge_node[key] = NodeId(next++);
-    }
-  }
-  for (std::size_t t = 0; t < triangles.size(); ++t) b.centre.push_back(NodeId(next++));
-  for (std::size_t t = 0; t < triangles.size(); ++t) {
-    const Triangle& tri = triangles[t];
-    for (int k = 0; k < 3; ++k) {
-      const int v = tri[k];
-      const int after = tri[(k + 1) % 3];
-      const int before = tri[(k + 2) % 3];
-      b.surface.quads.push_back({NodeId(v), b.edge_node.at(std::minmax(v, after)), b.centre[t],
-                                 b.edge_node.at(std::minmax(before, v))});
-    }
-  }
-  b.surface.num_nodes = static_cast<std::size_t>(next);
-  return b;
+  return test::split_triangles(triangles, primal::Points::Zero(num_vertices, 3));
 }
 
 // The octahedron with vertices +x, +y, -x, -y, +z, -z (ids 0..5), outward.
@@ -75,9 +50,16 @@ Tet positive(std::array<int, 4> v, const std::vector<Point>& points) {
   return {NodeId(v[0]), NodeId(v[1]), NodeId(v[2]), NodeId(v[3])};
 }
 
+/// The octahedron cut into four tets around its axis 4-5.
+std::vector<Tet> octahedron_axis_tets() {
+  std::vector<Tet> tets;
+  for (int i = 0; i < 4; ++i) tets.push_back(positive({4, 5, i, (i + 1) % 4}, kOctahedronPoints));
+  return tets;
+}
+
 TEST(TriangleSplit, RecognisesTheOctahedronsTrianglesAndNodes) {
   const Built b = split_by_hand(kOctahedron, 6);
-  const std::optional<TriangleSplit> split = recognise_triangle_split(b.surface);
+  const std::optional<TriangleSplit> split = recognise_triangle_split(b.mesh.surface);
   ASSERT_TRUE(split.has_value());
   ASSERT_EQ(split->triangles.size(), 8U);
   EXPECT_EQ(split->vertices, (std::vector<NodeId>{NodeId(0), NodeId(1), NodeId(2), NodeId(3),
@@ -95,8 +77,8 @@ TEST(TriangleSplit, RecognisesTheOctahedronsTrianglesAndNodes) {
       EXPECT_EQ(split->edge_nodes[t][k],
                 b.edge_node.at(std::minmax(tri[k].value(), tri[(k + 1) % 3].value())));
     }
-    EXPECT_EQ(b.surface.quads[split->quads[t][0].index()][0], tri[0]);
-    EXPECT_EQ(b.surface.quads[split->quads[t][0].index()][2], split->centres[t]);
+    EXPECT_EQ(b.mesh.surface.quads[split->quads[t][0].index()][0], tri[0]);
+    EXPECT_EQ(b.mesh.surface.quads[split->quads[t][0].index()][2], split->centres[t]);
   }
   std::set<std::array<int, 3>> expected;
   for (const Triangle& t : kOctahedron) {
@@ -110,7 +92,7 @@ TEST(TriangleSplit, RecognisesTheOctahedronsTrianglesAndNodes) {
 
 TEST(TriangleSplit, ATetrahedronSplitIsReadWithItsSmallestNodeAVertex) {
   const Built b = split_by_hand(kTetrahedron, 4);
-  const std::optional<TriangleSplit> split = recognise_triangle_split(b.surface);
+  const std::optional<TriangleSplit> split = recognise_triangle_split(b.mesh.surface);
   ASSERT_TRUE(split.has_value());
   EXPECT_EQ(split->triangles.size(), 4U);
   EXPECT_EQ(split->vertices.front(), NodeId(0));
@@ -123,12 +105,12 @@ TEST(TriangleSplit, SurfacesThatAreNotSplitTrianglesAreNotRecognised) {
   EXPECT_FALSE(recognise_triangle_split(test::box_surface(3, 2, 1).surface).has_value());
   // A split octahedron with one triangle's quads re-cut the other way round is not one.
   Built b = split_by_hand(kOctahedron, 6);
-  std::swap(b.surface.quads[0][1], b.surface.quads[0][3]);
-  EXPECT_FALSE(recognise_triangle_split(b.surface).has_value());
+  std::swap(b.mesh.surface.quads[0][1], b.mesh.surface.quads[0][3]);
+  EXPECT_FALSE(recognise_triangle_split(b.mesh.surface).has_value());
   // Nor is an open one (a triangle's quads removed).
   Built open = split_by_hand(kOctahedron, 6);
-  open.surface.quads.resize(open.surface.quads.size() - 3);
-  EXPECT_FALSE(recognise_triangle_split(open.surface).has_value());
+  open.mesh.surface.quads.resize(open.mesh.surface.quads.size() - 3);
+  EXPECT_FALSE(recognise_triangle_split(open.mesh.surface).has_value());
   EXPECT_FALSE(recognise_triangle_split(QuadSurface{}).has_value());
 }
 
@@ -149,43 +131,43 @@ TEST(TriangleSplit, TheTwoByTwoByTwoBoxIsTheOctahedronSplit) {
 
 TEST(TetSplit, OneTetrahedronGivesFourHexesBoundedByTheSurface) {
   const Built b = split_by_hand(kTetrahedron, 4);
-  const TriangleSplit split = *recognise_triangle_split(b.surface);
+  const TriangleSplit split = *recognise_triangle_split(b.mesh.surface);
   const std::vector<Point> points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  const TetSplit cut = split_tets(split, b.surface.num_nodes, {positive({0, 1, 2, 3}, points)});
+  const TetSplit cut =
+      split_tets(split, b.mesh.surface.num_nodes, {positive({0, 1, 2, 3}, points)});
   EXPECT_EQ(cut.complex.hexes.size(), 4U);
-  EXPECT_EQ(cut.first_added, b.surface.num_nodes);
+  EXPECT_EQ(cut.first_added, b.mesh.surface.num_nodes);
   EXPECT_EQ(cut.added_parents.size(), 1U);  // the tet's centre only
   EXPECT_EQ(cut.interior_edges, 0U);
   EXPECT_EQ(cut.interior_faces, 0U);
-  const ValidationReport v = validate_hex_complex(cut.complex, &b.surface);
+  const ValidationReport v = validate_hex_complex(cut.complex, &b.mesh.surface);
   EXPECT_TRUE(v.valid) << v.summary();
 }
 
 TEST(TetSplit, TheOctahedronCutIntoFourTetsAroundItsAxisIsAValidComplex) {
   const Built b = split_by_hand(kOctahedron, 6);
-  const TriangleSplit split = *recognise_triangle_split(b.surface);
-  std::vector<Tet> tets;
-  for (int i = 0; i < 4; ++i) tets.push_back(positive({4, 5, i, (i + 1) % 4}, kOctahedronPoints));
-  const TetSplit cut = split_tets(split, b.surface.num_nodes, tets);
+  const TriangleSplit split = *recognise_triangle_split(b.mesh.surface);
+  const std::vector<Tet> tets = octahedron_axis_tets();
+  const TetSplit cut = split_tets(split, b.mesh.surface.num_nodes, tets);
   EXPECT_EQ(cut.complex.hexes.size(), 16U);
   EXPECT_EQ(cut.interior_edges, 1U);  // the axis 4-5
   EXPECT_EQ(cut.interior_faces, 4U);  // the four half-planes through the axis
   EXPECT_EQ(cut.added_parents.size(), 1U + 4U + 4U);
-  const ValidationReport v = validate_hex_complex(cut.complex, &b.surface);
+  const ValidationReport v = validate_hex_complex(cut.complex, &b.mesh.surface);
   EXPECT_TRUE(v.valid) << v.summary();
   // The same tets with one of them mirrored break the face orientation: not a complex.
   std::vector<Tet> mirrored = tets;
   std::swap(mirrored[0][2], mirrored[0][3]);
-  EXPECT_FALSE(
-      validate_hex_complex(split_tets(split, b.surface.num_nodes, mirrored).complex, &b.surface)
-          .valid);
+  EXPECT_FALSE(validate_hex_complex(split_tets(split, b.mesh.surface.num_nodes, mirrored).complex,
+                                    &b.mesh.surface)
+                   .valid);
 }
 
 TEST(TetSplit, AnInteriorVertexGetsHexesAroundIt) {
   // The tetrahedron coned from an interior node 4 (ids after the surface's nodes).
   const Built b = split_by_hand(kTetrahedron, 4);
-  const TriangleSplit split = *recognise_triangle_split(b.surface);
-  const std::size_t centre = b.surface.num_nodes;
+  const TriangleSplit split = *recognise_triangle_split(b.mesh.surface);
+  const std::size_t centre = b.mesh.surface.num_nodes;
   std::vector<Point> points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   points.resize(centre + 1, {0.0, 0.0, 0.0});
   points[centre] = {0.25, 0.25, 0.25};
@@ -199,32 +181,31 @@ TEST(TetSplit, AnInteriorVertexGetsHexesAroundIt) {
   std::size_t at_centre = 0;
   for (const Hex& h : cut.complex.hexes) at_centre += h[0] == NodeId(centre) ? 1 : 0;
   EXPECT_EQ(at_centre, 4U);  // one hex of each tet at the interior vertex: a closed sheet
-  const ValidationReport v = validate_hex_complex(cut.complex, &b.surface);
+  const ValidationReport v = validate_hex_complex(cut.complex, &b.mesh.surface);
   EXPECT_TRUE(v.valid) << v.summary();
 }
 
 TEST(TetSplit, RefusesTetsThatDoNotKeepTheSurface) {
   const Built b = split_by_hand(kOctahedron, 6);
-  const TriangleSplit split = *recognise_triangle_split(b.surface);
-  std::vector<Tet> tets;
-  for (int i = 0; i < 4; ++i) tets.push_back(positive({4, 5, i, (i + 1) % 4}, kOctahedronPoints));
+  const TriangleSplit split = *recognise_triangle_split(b.mesh.surface);
+  const std::vector<Tet> tets = octahedron_axis_tets();
   // A missing tet leaves two boundary triangles uncovered.
   const std::vector<Tet> three(tets.begin(), tets.begin() + 3);
-  EXPECT_THROW((void)split_tets(split, b.surface.num_nodes, three), InvalidInput);
+  EXPECT_THROW((void)split_tets(split, b.mesh.surface.num_nodes, three), InvalidInput);
   // A tet twice covers its boundary triangles twice.
   std::vector<Tet> twice = tets;
   twice.push_back(tets[0]);
-  EXPECT_THROW((void)split_tets(split, b.surface.num_nodes, twice), InvalidInput);
+  EXPECT_THROW((void)split_tets(split, b.mesh.surface.num_nodes, twice), InvalidInput);
   // A tet on an edge node (not a triangle vertex), a repeated node, an unknown node.
   std::vector<Tet> bad = tets;
   bad[0][0] = b.edge_node.at({0, 1});
-  EXPECT_THROW((void)split_tets(split, b.surface.num_nodes, bad), InvalidInput);
+  EXPECT_THROW((void)split_tets(split, b.mesh.surface.num_nodes, bad), InvalidInput);
   bad = tets;
   bad[0][1] = bad[0][0];
-  EXPECT_THROW((void)split_tets(split, b.surface.num_nodes, bad), InvalidInput);
+  EXPECT_THROW((void)split_tets(split, b.mesh.surface.num_nodes, bad), InvalidInput);
   bad = tets;
-  bad[0][0] = NodeId(b.surface.num_nodes + 3);
-  EXPECT_THROW((void)split_tets(split, b.surface.num_nodes, bad), InvalidInput);
+  bad[0][0] = NodeId(b.mesh.surface.num_nodes + 3);
+  EXPECT_THROW((void)split_tets(split, b.mesh.surface.num_nodes, bad), InvalidInput);
 }
 
 }  // namespace

@@ -249,4 +249,45 @@ primal::SurfaceMesh translated(primal::SurfaceMesh mesh, const Eigen::RowVector3
   return mesh;
 }
 
+SplitTriangles split_triangles(const std::vector<std::array<int, 3>>& triangles,
+                               const primal::Points& vertices) {
+  SplitTriangles b;
+  int next = static_cast<int>(vertices.rows());
+  for (const auto& t : triangles) {
+    for (int k = 0; k < 3; ++k) {
+      const std::pair<int, int> key = std::minmax(t[k], t[(k + 1) % 3]);
+      if (b.edge_node.find(key) == b.edge_node.end()) b.edge_node[key] = NodeId(next++);
+    }
+  }
+  for (std::size_t t = 0; t < triangles.size(); ++t) b.centre.push_back(NodeId(next++));
+  primal::Points& p = b.mesh.points;
+  p.resize(next, 3);
+  p.topRows(vertices.rows()) = vertices;
+  for (const auto& [key, node] : b.edge_node)
+    p.row(node.value()) = 0.5 * (vertices.row(key.first) + vertices.row(key.second));
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const auto& tri = triangles[t];
+    p.row(b.centre[t].value()) =
+        (vertices.row(tri[0]) + vertices.row(tri[1]) + vertices.row(tri[2])) / 3.0;
+    for (int k = 0; k < 3; ++k) {
+      const int v = tri[k];
+      const int after = tri[(k + 1) % 3];
+      const int before = tri[(k + 2) % 3];
+      b.mesh.surface.quads.push_back({NodeId(v), b.edge_node.at(std::minmax(v, after)), b.centre[t],
+                                      b.edge_node.at(std::minmax(before, v))});
+    }
+  }
+  b.mesh.surface.num_nodes = static_cast<std::size_t>(next);
+  return b;
+}
+
+primal::SurfaceMesh triangle_split_of(const primal::SurfaceMesh& quads) {
+  std::vector<std::array<int, 3>> triangles;
+  for (const stc::Quad& q : quads.surface.quads) {
+    triangles.push_back({q[0].value(), q[1].value(), q[2].value()});
+    triangles.push_back({q[0].value(), q[2].value(), q[3].value()});
+  }
+  return split_triangles(triangles, quads.points).mesh;
+}
+
 }  // namespace stcweave::test

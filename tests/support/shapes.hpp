@@ -4,7 +4,9 @@
 /// Fig. 5 bar, the rhombic dodecahedron. Surfaces are oriented outward.
 
 #include <array>
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "stcweave/primal/mesh.hpp"
@@ -78,5 +80,21 @@ primal::SurfaceMesh merged_surfaces(const std::vector<primal::SurfaceMesh>& surf
 
 /// Every point of `mesh` moved by `offset`.
 primal::SurfaceMesh translated(primal::SurfaceMesh mesh, const Eigen::RowVector3d& offset);
+
+/// A triangle mesh (outward, vertex ids 0 .. V-1 at the rows of `vertices`) with every
+/// triangle split into three quads at its centre and the middles of its edges, built
+/// independently of stc::recognise_triangle_split: the vertices keep their ids, then one node
+/// per edge in order of first use (at its middle), then one per triangle (at its centroid).
+struct SplitTriangles {
+  primal::SurfaceMesh mesh;
+  std::map<std::pair<int, int>, NodeId> edge_node;  ///< (smaller, larger vertex id) -> node
+  std::vector<NodeId> centre;                       ///< per triangle
+};
+SplitTriangles split_triangles(const std::vector<std::array<int, 3>>& triangles,
+                               const primal::Points& vertices);
+
+/// The triangle-split surface of a quad surface: each quad cut into two triangles along its
+/// diagonal (0, 2), then `split_triangles`.
+primal::SurfaceMesh triangle_split_of(const primal::SurfaceMesh& quads);
 
 }  // namespace stcweave::test
