@@ -41,6 +41,7 @@ struct MeshArgs {
   std::string pillow = "auto";
   std::string interior = "auto";
   double tet_growth = primal::TetInteriorOptions{}.growth;
+  std::string tet_flips = "1";
   int position_rounds = 100;
   int position_iterations = 3000;
   int position_newton_after = primal::PositionOptions{}.newton_after;
@@ -230,6 +231,9 @@ int run_mesh(const MeshArgs& a) {
   options.pillow.mode = primal::pillow_mode_from_name(a.pillow);
   options.interior.mode = primal::interior_mode_from_name(a.interior);
   options.interior.growth = a.tet_growth;
+  options.interior.flips = a.tet_flips != "off";
+  if (options.interior.flips) options.interior.flip_floor = std::stod(a.tet_flips);
+
   options.position.max_outer_iterations = a.position_rounds;
   options.position.max_inner_iterations = a.position_iterations;
   options.position.theta = a.position_theta;
@@ -367,6 +371,7 @@ int run_mesh(const MeshArgs& a) {
   if (r.interior.tets > 0) {
     report["interior"]["triangles"] = r.interior.triangles;
     report["interior"]["tets"] = r.interior.tets;
+    report["interior"]["flips"] = r.interior.flips;
     report["interior"]["interior_vertices"] = r.interior.interior_vertices;
     report["interior"]["seconds"] = r.interior.seconds;
   }
@@ -480,7 +485,14 @@ int run_mesh(const MeshArgs& a) {
               << " hexes around an interior edge (" << valence.interior_edges_over_4
               << " edges over 4), at most " << valence.max_hexes_at_interior_node
               << " at an interior node (" << valence.interior_nodes_over_8 << " nodes over 8)\n";
-    if (r.interior.triangle_split) std::cout << "interior   " << r.interior.reason << "\n";
+    if (r.interior.triangle_split) {
+      std::cout << "interior   " << r.interior.reason;
+      if (r.interior.tets > 0) {
+        std::cout << "; " << r.interior.tets << " tets, " << r.interior.flips
+                  << " removed by 3-2 flips";
+      }
+      std::cout << "\n";
+    }
     std::cout << "pillow     " << r.pillow.reason << "\n";
     std::cout << "valid      " << (r.validation.valid ? "yes" : "NO: " + r.validation.summary())
               << "\n";
@@ -609,6 +621,23 @@ Action add_mesh_command(CLI::App& app) {
                   "many times the boundary's edge length (1: Gmsh's sizes)")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 10.0));
+  sub->add_option("--tet-flips", args->tet_flips,
+                  "tet interior: 3-2 flips before the split (four hexes fewer each), each made "
+                  "only when its new tets' worst corner quality stays at least this floor or at "
+                  "least the replaced tets' worst (0 to 1; 1: never lower it); off: none")
+      ->capture_default_str()
+      ->check([](const std::string& value) -> std::string {
+        if (value == "off") return {};
+        std::size_t used = 0;
+        double floor = -1.0;
+        try {
+          floor = std::stod(value, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used == value.size() && floor >= 0.0 && floor <= 1.0) return {};
+        return "--tet-flips must be off or a quality floor from 0 to 1, not '" + value + "'";
+      });
   sub->add_option("--position-rounds", args->position_rounds,
                   "untangling: most rounds of (minimise, lower epsilon)")
       ->capture_default_str()

@@ -16,6 +16,7 @@
 
 #if STCWEAVE_HAVE_GMSH
 #include "gmsh_session.hpp"
+#include "tet_flips.hpp"
 #endif
 
 namespace stcweave::primal {
@@ -319,6 +320,8 @@ weave::WeaveResult tet_interior(const SurfaceMesh& surface, const stc::TriangleS
     if (signed_volume(positions, tets[t]) < 0.0) std::swap(tets[t][2], tets[t][3]);
   }
 
+  TetFlips flips;
+  if (options.flips) flips = flip_tets(positions, tets, options.flip_floor);
   stc::TetSplit cut = stc::split_tets(split, num_vertices, tets);
   positions.conservativeResize(static_cast<Eigen::Index>(cut.complex.num_nodes), 3);
   for (std::size_t i = 0; i < cut.added_parents.size(); ++i) {
@@ -336,6 +339,7 @@ weave::WeaveResult tet_interior(const SurfaceMesh& surface, const stc::TriangleS
   if (report != nullptr) {
     report->triangles = split.triangles.size();
     report->tets = tets.size();
+    report->flips = flips.flips;
     report->interior_vertices = interior_tags.size();
     report->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }

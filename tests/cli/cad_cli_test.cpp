@@ -285,6 +285,18 @@ TEST_F(CadCli, BlindHoleGetsTheTetInteriorWithNoInvertedHex) {
   ASSERT_EQ(tets.code, 0) << tets.out;
   EXPECT_EQ(tets_report["interior"]["used"], "tets");
   EXPECT_EQ(tets_report["hexes"], report["hexes"]);
+  // The 3-2 flips (on by default) save four hexes each; off, the split of Gmsh's own tets.
+  const int flips = tets_report["interior"]["flips"].get<int>();
+  EXPECT_GT(flips, 0);
+  EXPECT_THAT(tets.out, HasSubstr(std::to_string(flips) + " removed by 3-2 flips"));
+  const auto [plain, plain_report] =
+      mesh(at("bh.obj"), "bh_plain", "--interior tets --tet-flips off");
+  ASSERT_EQ(plain.code, 0) << plain.out;
+  EXPECT_EQ(plain_report["interior"]["flips"], 0);
+  EXPECT_EQ(plain_report["hexes"].get<int>(), tets_report["hexes"].get<int>() + 4 * flips);
+  const auto bad_floor = run_cli("mesh " + at("bh.obj") + " -o " + at("x.vtk") + " --tet-flips 2");
+  EXPECT_EQ(bad_floor.code, 1) << bad_floor.out;
+  EXPECT_THAT(bad_floor.out, HasSubstr("--tet-flips must be off or a quality floor"));
   const auto refused =
       run_cli("mesh " + data("lblock.obj") + " -o " + at("l.vtk") + " --interior tets");
   EXPECT_EQ(refused.code, 2) << refused.out;

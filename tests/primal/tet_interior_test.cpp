@@ -163,6 +163,28 @@ TEST_F(TetInterior, GrowthGivesFewerTetsInsideAndKeepsThemValid) {
   EXPECT_LT(tets[1], tets[0]);
 }
 
+TEST_F(TetInterior, FlipsRemoveTetsAndKeepTheComplexValid) {
+  const SurfaceMesh surface = triangle_split_of(test::box_surface(4, 4, 4));
+  const std::optional<stc::TriangleSplit> split = stc::recognise_triangle_split(surface.surface);
+  ASSERT_TRUE(split.has_value());
+  std::array<TetInteriorReport, 2> reports;
+  std::array<std::size_t, 2> hexes{};
+  for (std::size_t i = 0; i < 2; ++i) {
+    TetInteriorOptions options;
+    options.flips = i == 1;
+    Points positions;
+    const weave::WeaveResult r = tet_interior(surface, *split, options, positions, &reports[i]);
+    hexes[i] = r.complex.hexes.size();
+    const stc::ValidationReport v = stc::validate_hex_complex(r.complex, &surface.surface);
+    EXPECT_TRUE(v.valid) << v.summary();
+    EXPECT_EQ(summarize_quality(HexMesh{positions, r.complex}).inverted, 0u);
+  }
+  EXPECT_EQ(reports[0].flips, 0u);
+  ASSERT_GT(reports[1].flips, 0u);
+  EXPECT_EQ(reports[1].tets + reports[1].flips, reports[0].tets);
+  EXPECT_EQ(hexes[1] + 4 * reports[1].flips, hexes[0]);
+}
+
 TEST_F(TetInterior, LeavesGmshAsItFoundItForTheCadFrontEnd) {
   // The growth is a size callback in Gmsh's one session, which Gmsh 4.8 keeps across
   // clear(): a CAD surface meshed after a tet interior must be the one meshed before it.

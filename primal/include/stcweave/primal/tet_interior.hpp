@@ -47,6 +47,12 @@ struct TetInteriorOptions {
   /// give fewer hexes than Gmsh's own all-hex meshes on six of eight of their boundaries with
   /// a minimum scaled Jacobian still well above Gmsh's (docs/tet-interior.md).
   double growth = 1.5;
+  /// 3-2 flips of the tetrahedra before the split (one tet, four hexes fewer per flip), each
+  /// only when the worse of its two new tets has a corner quality (`tet_corner_quality`) of
+  /// at least `flip_floor` or at least that of the worst of the three it replaces
+  /// (docs/tet-interior.md, "Fewer tets").
+  bool flips = true;
+  double flip_floor = 1.0;
 };
 
 /// What the stage did.
@@ -58,7 +64,8 @@ struct TetInteriorReport {
   bool compared = false;  ///< auto positioned both interiors and chose
   std::string reason;     ///< one line: why this interior
   std::size_t triangles = 0;
-  std::size_t tets = 0;
+  std::size_t tets = 0;               ///< after the flips
+  std::size_t flips = 0;              ///< 3-2 flips made (tets removed)
   std::size_t interior_vertices = 0;  ///< tet vertices that Gmsh put inside
   double seconds = 0.0;               ///< tetrahedralisation and split
 };
