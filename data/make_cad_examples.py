@@ -5,15 +5,16 @@
                                            data/plate_hole_blocks.step, data/torus_blocks.step,
                                            data/open_shell.step, data/closed_shell.step and
                                            data/cylinder_tilted.step, data/torus_tilted.step,
-                                           data/plate_hole_tilted.step and
-                                           data/plate_blind_hole.step
+                                           data/plate_hole_tilted.step,
+                                           data/plate_blind_hole.step and
+                                           data/plate_two_holes.step
     data/make_cad_examples.py --shapes DIR writes the .step files of SHAPES into DIR (for
                                            bench/cad_vs_gmsh.py): cube, lblock, cylinder,
                                            sphere, plate_hole and torus as one solid each, and
                                            each of the last five but the cube also built of
                                            blocks glued face to face (NAME_blocks), every
                                            face of the blocks four-sided; and
-                                           plate_blind_hole (data/plate_blind_hole.step)
+                                           plate_blind_hole, plate_two_holes (as in data/)
 
 plate_slot.step: a 4 x 2 x 0.5 plate with a slot 0.6 wide cut from one long side, 1.2 deep,
 with a round end; the slot is open on the side, so the solid has genus 0.
@@ -31,7 +32,9 @@ along (2, -1, 2) / 3 through (0.3, -0.2, 0.5) (the split into blocks must find b
 plate_hole_tilted.step: a 4 x 2 x 0.5 plate with a through-hole of radius 0.4 off its centre
 (at (1.3, 0.8)), one solid, turned so that its normal is (1, 2, 2) / 3 and moved by
 (0.1, 0.2, 0.3). plate_blind_hole.step: the plate of plate_hole_blocks.step as one solid with
-a blind hole instead (radius 0.5, 0.3 deep from the top face; genus 0).
+a blind hole instead (radius 0.5, 0.3 deep from the top face; genus 0). plate_two_holes.step:
+the same plate as one solid with two through-holes of radius 0.4 at (1.2, 1) and (2.8, 1)
+(genus 2; not split into blocks, so its surface is mixed or triangle-split).
 open_shell.step: a unit cube's boundary with one face missing: five faces and no volume, the
 input stcweave must refuse ("not a closed solid"); closed_shell.step: all six faces and no
 volume, which stcweave sews into a solid (as IGES files, which rarely hold solids, need).
@@ -46,7 +49,7 @@ import gmsh
 
 SHAPES = ["cube", "lblock", "lblock_blocks", "cylinder", "cylinder_blocks", "sphere",
           "sphere_blocks", "plate_hole", "plate_hole_blocks", "torus", "torus_blocks",
-          "plate_blind_hole"]
+          "plate_blind_hole", "plate_two_holes"]
 
 
 def plate_slot(occ):
@@ -87,6 +90,13 @@ def plate_blind_hole(occ):
     plate = occ.addBox(0, 0, 0, 4, 2, 0.5)
     hole = occ.addCylinder(2, 1, 0.2, 0, 0, 1, 0.5)
     occ.cut([(3, plate)], [(3, hole)])
+
+
+def plate_two_holes(occ):
+    plate = occ.addBox(0, 0, 0, 4, 2, 0.5)
+    left = occ.addCylinder(1.2, 1, -0.5, 0, 0, 1.5, 0.4)
+    right = occ.addCylinder(2.8, 1, -0.5, 0, 0, 1.5, 0.4)
+    occ.cut([(3, plate)], [(3, left), (3, right)])
 
 
 def open_shell(occ):
@@ -232,6 +242,8 @@ def shapes(occ, name):
         torus_blocks(occ)
     elif name == "plate_blind_hole":
         plate_blind_hole(occ)
+    elif name == "plate_two_holes":
+        plate_two_holes(occ)
 
 
 def write(path, build, *args):
@@ -261,6 +273,7 @@ def main():
         write(os.path.join(here, "torus_tilted.step"), torus_tilted)
         write(os.path.join(here, "plate_hole_tilted.step"), plate_hole_tilted)
         write(os.path.join(here, "plate_blind_hole.step"), plate_blind_hole)
+        write(os.path.join(here, "plate_two_holes.step"), plate_two_holes)
     else:
         print(__doc__, file=sys.stderr)
         sys.exit(1)

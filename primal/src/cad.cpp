@@ -599,9 +599,16 @@ CadSurface mesh_current_model(const CadOptions& options, CadRecord record) {
         probe.quads.push_back({NodeId(row.at(q[0])), NodeId(row.at(q[1])), NodeId(row.at(q[2])),
                                NodeId(row.at(q[3]))});
       }
-      crossing = diagnose(probe).self_intersecting_loops.value_or(0);
+      const SurfaceDiagnosis d = diagnose(probe);
+      crossing = d.self_intersecting_loops.value_or(0);
       if (crossing > 0) {
         why = std::to_string(crossing) + " self-intersecting loop(s)";
+      } else if (options.recipe == CadRecipe::Auto && d.genus.value_or(0) > 0) {
+        // A handle: no mixed surface tried has had a disc cut that weaves, while the
+        // triangle-split one gets the tet interior, which needs no cut (docs/cad.md).
+        why = "genus " + std::to_string(*d.genus) +
+              ": a handle, which the tet interior of a triangle-split surface meshes without "
+              "a cut";
       }
     }
     if (why.empty()) {

@@ -71,6 +71,7 @@ bool may_be_triangle_split(const stc::QuadSurface& surface) {
 /// missing, or the file is not one readable shell): the caller weaves as usual.
 std::optional<MeshResult> compare_interiors(const MeshFile& file, const MeshOptions& options) {
   if (!has_tet_interior_support()) return std::nullopt;
+  int genus = 0;
   try {
     // Recognition first (cheap, on the surface as the pipeline orients it), the diagnosis
     // only for a surface that is triangle-split.
@@ -80,6 +81,7 @@ std::optional<MeshResult> compare_interiors(const MeshFile& file, const MeshOpti
     if (!stc::recognise_triangle_split(oriented.surface)) return std::nullopt;
     const SurfaceDiagnosis d = diagnose(file);
     if (d.components != 1 || !d.closed || !d.manifold) return std::nullopt;
+    genus = d.genus.value_or(0);
   } catch (const Error&) {
     return std::nullopt;  // the woven path reports what is wrong with the file
   }
@@ -108,18 +110,34 @@ std::optional<MeshResult> compare_interiors(const MeshFile& file, const MeshOpti
   std::exception_ptr weave_error;
   std::string tet_error;
   Stopwatch clock;
+  const auto run_tets = [&] {
+    try {
+      tets = mesh_file(file, tets_only);
+    } catch (const Error& e) {
+      tet_error = e.what();
+    }
+    return clock.lap();
+  };
+  double tet_seconds = 0.0;
+  if (genus > 0) {
+    // With handles the weave needs them cut (docs/topology.md), which costs far more than
+    // the tets and, on every solid tried, gave inverted hexes where the tets gave none; so
+    // the tets go first, and a valid result with no inverted hex is kept without weaving.
+    tet_seconds = run_tets();
+    if (tets && tets->validation.valid && tets->quality.inverted == 0) {
+      tets->interior.reason = "auto: tets (genus " + std::to_string(genus) +
+                              ": not woven, as the tet interior is valid with no inverted hex "
+                              "and a weave would need its handles cut)";
+      return tets;
+    }
+  }
   try {
     woven = mesh_file(file, weave_only);
   } catch (const Error&) {
     weave_error = std::current_exception();
   }
   const double weave_seconds = clock.lap();
-  try {
-    tets = mesh_file(file, tets_only);
-  } catch (const Error& e) {
-    tet_error = e.what();
-  }
-  const double tet_seconds = clock.lap();
+  if (genus == 0) tet_seconds = run_tets();
   if (!tets) {
     replay_trace();
     if (weave_error) std::rethrow_exception(weave_error);

@@ -257,6 +257,25 @@ TEST_F(CadCli, WithoutGmshCadInputExitsTwoWithTheMessage) {
 
 }  // namespace
 
+// A plate with two through-holes (genus 2, one solid, not split into blocks): its mixed
+// surface has handles no disc cut weaves, so `auto` makes it triangle-split, and the tet
+// interior meshes it without a cut and without weaving it at all.
+TEST_F(CadCli, TwoHolePlateIsTriangleSplitAndGetsTheTetInteriorWithoutAWeave) {
+  STCWEAVE_SKIP_WITHOUT_GMSH();
+  const auto [r, report] =
+      mesh(data("plate_two_holes.step"), "th", "--size 0.25 --surface-out " + at("th.obj"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("mixed surface dropped: genus 2"));
+  EXPECT_EQ(report["interior"]["used"], "tets");
+  EXPECT_EQ(report["interior"]["compared"], false);
+  EXPECT_THAT(report["interior"]["reason"].get<std::string>(), HasSubstr("not woven"));
+  EXPECT_EQ(report["seconds"]["other_interior"].get<double>(), 0.0);
+  EXPECT_EQ(report["quality"]["inverted"], 0);
+  EXPECT_GT(report["quality"]["min_scaled_jacobian"].get<double>(), 0.1);
+  const auto check = run_cli("check " + at("th.vtk") + " --boundary " + at("th.obj"));
+  EXPECT_EQ(check.code, 0) << check.out;
+}
+
 // The blind hole (genus 0, triangle-split): the woven star cannot see past the hole's rim and
 // kept inverted hexes (54 at 0.125); `--interior auto` keeps the split tetrahedral mesh
 // (docs/tet-interior.md), a valid mesh with no inverted hex, certified by `check` against the
