@@ -9,7 +9,8 @@ once as three unit boxes glued face to face), cylinder (radius 0.5, height 1), s
 plate with a hole (4 x 2 x 0.5, hole of radius 0.5; one solid, and four blocks
 cut along the diagonals), torus (radius 1, tube 0.4; one solid, and 20 blocks of an O-grid
 section), the plate with a blind hole instead (radius 0.5, 0.3 deep; genus 0, one solid) and
-the plate with two through-holes (radius 0.4; genus 2, one solid, not split into blocks),
+the plate with two through-holes (radius 0.4; genus 2, one solid, not split into blocks) and
+a 2 x 2 x 2 box with a spherical cavity (radius 0.5; two shells, one solid),
 written as STEP by data/make_cad_examples.py:
 - ours:  stcweave mesh SOLID.step -o ours.vtk --size H  (quads of edge ~H);
 - Gmsh:  gmsh SOLID.step -3 with Mesh.SubdivisionAlgorithm 2 (tets split into 4 hexes each)
@@ -38,7 +39,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 SHAPES = ["cube", "lblock", "lblock_blocks", "cylinder", "cylinder_blocks", "sphere",
           "sphere_blocks", "plate_hole", "plate_hole_blocks", "torus", "torus_blocks",
-          "plate_blind_hole", "plate_two_holes"]
+          "plate_blind_hole", "plate_two_holes", "box_cavity"]
 
 
 def run(cmd, timeout):

@@ -6,15 +6,17 @@
                                            data/open_shell.step, data/closed_shell.step and
                                            data/cylinder_tilted.step, data/torus_tilted.step,
                                            data/plate_hole_tilted.step,
-                                           data/plate_blind_hole.step and
-                                           data/plate_two_holes.step
+                                           data/plate_blind_hole.step,
+                                           data/plate_two_holes.step and
+                                           data/box_cavity.step
     data/make_cad_examples.py --shapes DIR writes the .step files of SHAPES into DIR (for
                                            bench/cad_vs_gmsh.py): cube, lblock, cylinder,
                                            sphere, plate_hole and torus as one solid each, and
                                            each of the last five but the cube also built of
                                            blocks glued face to face (NAME_blocks), every
                                            face of the blocks four-sided; and
-                                           plate_blind_hole, plate_two_holes (as in data/)
+                                           plate_blind_hole, plate_two_holes, box_cavity
+                                           (as in data/)
 
 plate_slot.step: a 4 x 2 x 0.5 plate with a slot 0.6 wide cut from one long side, 1.2 deep,
 with a round end; the slot is open on the side, so the solid has genus 0.
@@ -34,7 +36,8 @@ plate_hole_tilted.step: a 4 x 2 x 0.5 plate with a through-hole of radius 0.4 of
 (0.1, 0.2, 0.3). plate_blind_hole.step: the plate of plate_hole_blocks.step as one solid with
 a blind hole instead (radius 0.5, 0.3 deep from the top face; genus 0). plate_two_holes.step:
 the same plate as one solid with two through-holes of radius 0.4 at (1.2, 1) and (2.8, 1)
-(genus 2; not split into blocks, so its surface is mixed or triangle-split).
+(genus 2; not split into blocks, so its surface is mixed or triangle-split). box_cavity.step:
+a 2 x 2 x 2 box with a spherical cavity of radius 0.5 at its centre (two shells, one solid).
 open_shell.step: a unit cube's boundary with one face missing: five faces and no volume, the
 input stcweave must refuse ("not a closed solid"); closed_shell.step: all six faces and no
 volume, which stcweave sews into a solid (as IGES files, which rarely hold solids, need).
@@ -49,7 +52,7 @@ import gmsh
 
 SHAPES = ["cube", "lblock", "lblock_blocks", "cylinder", "cylinder_blocks", "sphere",
           "sphere_blocks", "plate_hole", "plate_hole_blocks", "torus", "torus_blocks",
-          "plate_blind_hole", "plate_two_holes"]
+          "plate_blind_hole", "plate_two_holes", "box_cavity"]
 
 
 def plate_slot(occ):
@@ -97,6 +100,12 @@ def plate_two_holes(occ):
     left = occ.addCylinder(1.2, 1, -0.5, 0, 0, 1.5, 0.4)
     right = occ.addCylinder(2.8, 1, -0.5, 0, 0, 1.5, 0.4)
     occ.cut([(3, plate)], [(3, left), (3, right)])
+
+
+def box_cavity(occ):
+    box = occ.addBox(0, 0, 0, 2, 2, 2)
+    ball = occ.addSphere(1, 1, 1, 0.5)
+    occ.cut([(3, box)], [(3, ball)])
 
 
 def open_shell(occ):
@@ -244,6 +253,8 @@ def shapes(occ, name):
         plate_blind_hole(occ)
     elif name == "plate_two_holes":
         plate_two_holes(occ)
+    elif name == "box_cavity":
+        box_cavity(occ)
 
 
 def write(path, build, *args):
@@ -274,6 +285,7 @@ def main():
         write(os.path.join(here, "plate_hole_tilted.step"), plate_hole_tilted)
         write(os.path.join(here, "plate_blind_hole.step"), plate_blind_hole)
         write(os.path.join(here, "plate_two_holes.step"), plate_two_holes)
+        write(os.path.join(here, "box_cavity.step"), box_cavity)
     else:
         print(__doc__, file=sys.stderr)
         sys.exit(1)

@@ -609,6 +609,11 @@ CadSurface mesh_current_model(const CadOptions& options, CadRecord record) {
         why = "genus " + std::to_string(*d.genus) +
               ": a handle, which the tet interior of a triangle-split surface meshes without "
               "a cut";
+      } else if (options.recipe == CadRecipe::Auto && d.components > record.volumes) {
+        // A cavity: the same, for the annulus cut of a cavity (docs/topology.md).
+        why = std::to_string(d.components) + " shells for " + std::to_string(record.volumes) +
+              " solid(s): a cavity, which the tet interior of a triangle-split surface meshes "
+              "without a cut";
       }
     }
     if (why.empty()) {

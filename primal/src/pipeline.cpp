@@ -72,6 +72,7 @@ bool may_be_triangle_split(const stc::QuadSurface& surface) {
 std::optional<MeshResult> compare_interiors(const MeshFile& file, const MeshOptions& options) {
   if (!has_tet_interior_support()) return std::nullopt;
   int genus = 0;
+  std::size_t shells = 1;
   try {
     // Recognition first (cheap, on the surface as the pipeline orients it), the diagnosis
     // only for a surface that is triangle-split.
@@ -80,8 +81,9 @@ std::optional<MeshResult> compare_interiors(const MeshFile& file, const MeshOpti
     (void)orient_outward(oriented);
     if (!stc::recognise_triangle_split(oriented.surface)) return std::nullopt;
     const SurfaceDiagnosis d = diagnose(file);
-    if (d.components != 1 || !d.closed || !d.manifold) return std::nullopt;
+    if (!d.closed || !d.manifold) return std::nullopt;
     genus = d.genus.value_or(0);
+    shells = d.components;
   } catch (const Error&) {
     return std::nullopt;  // the woven path reports what is wrong with the file
   }
@@ -119,15 +121,20 @@ std::optional<MeshResult> compare_interiors(const MeshFile& file, const MeshOpti
     return clock.lap();
   };
   double tet_seconds = 0.0;
-  if (genus > 0) {
-    // With handles the weave needs them cut (docs/topology.md), which costs far more than
-    // the tets and, on every solid tried, gave inverted hexes where the tets gave none; so
-    // the tets go first, and a valid result with no inverted hex is kept without weaving.
+  const bool tets_first = genus > 0 || shells > 1;
+  if (tets_first) {
+    // With handles or several shells the weave needs handles or cavities cut, or weaves each
+    // shell's star alone (docs/topology.md); on every such surface tried that cost more and
+    // gave worse hexes than the tets; so the tets go first, and a valid result with no
+    // inverted hex is kept without weaving.
     tet_seconds = run_tets();
     if (tets && tets->validation.valid && tets->quality.inverted == 0) {
-      tets->interior.reason = "auto: tets (genus " + std::to_string(genus) +
-                              ": not woven, as the tet interior is valid with no inverted hex "
-                              "and a weave would need its handles cut)";
+      tets->interior.reason =
+          "auto: tets (" +
+          (genus > 0 ? "genus " + std::to_string(genus) : std::to_string(shells) + " shells") +
+          ": not woven, as the tet interior is valid with no inverted hex and a weave would "
+          "need " +
+          (genus > 0 ? "its handles cut" : "its shells woven one by one or its cavities cut") + ")";
       return tets;
     }
   }
@@ -137,7 +144,7 @@ std::optional<MeshResult> compare_interiors(const MeshFile& file, const MeshOpti
     weave_error = std::current_exception();
   }
   const double weave_seconds = clock.lap();
-  if (genus == 0) tet_seconds = run_tets();
+  if (!tets_first) tet_seconds = run_tets();
   if (!tets) {
     replay_trace();
     if (weave_error) std::rethrow_exception(weave_error);
@@ -227,12 +234,6 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
   const bool self_crossing = r.diagnosis.self_intersecting_loops.value_or(0) > 0;
   Points tet_positions;
   if (options.interior.mode == InteriorMode::Tets) {
-    if (r.diagnosis.components != 1) {
-      throw Unsupported(file.path +
-                        ": the tet interior (--interior tets) takes one shell, this "
-                        "surface has " +
-                        std::to_string(r.diagnosis.components) + "; use --interior weave");
-    }
     const std::optional<stc::TriangleSplit> split =
         stc::recognise_triangle_split(r.surface.surface);
     if (!split) {

@@ -181,6 +181,107 @@ class BoundarySizes {
   std::vector<std::size_t> order_;  // the tree: each range's median at its middle
 };
 
+/// The shells of a triangle split (components joined by shared vertices), each with the
+/// Gmsh volume it bounds: a shell of positive signed volume bounds a solid, one of negative
+/// volume (oriented into its cavity) is a cavity of the smallest solid around it.
+struct Shells {
+  std::vector<std::size_t> shell_of_triangle;
+  std::size_t count = 0;
+  /// Per solid shell, the cavity shells inside it.
+  std::vector<std::pair<std::size_t, std::vector<std::size_t> > > solids;
+};
+
+/// How many times the closed triangle shell winds round p: the sum of its triangles' signed
+/// solid angles seen from p (Van Oosterom and Strackee), over 4 pi.
+double winding(const Points& points, const stc::TriangleSplit& split,
+               const std::vector<std::size_t>& triangles, const Eigen::Vector3d& p) {
+  double total = 0.0;
+  for (const std::size_t t : triangles) {
+    const Eigen::Vector3d a = points.row(split.triangles[t][0].value()).transpose() - p;
+    const Eigen::Vector3d b = points.row(split.triangles[t][1].value()).transpose() - p;
+    const Eigen::Vector3d c = points.row(split.triangles[t][2].value()).transpose() - p;
+    const double la = a.norm();
+    const double lb = b.norm();
+    const double lc = c.norm();
+    const double det = a.dot(b.cross(c));
+    const double den = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
+    total += 2.0 * std::atan2(det, den);
+  }
+  return total / (4.0 * M_PI);
+}
+
+Shells find_shells(const Points& points, const stc::TriangleSplit& split) {
+  // Union-find over the triangles' vertex nodes.
+  std::vector<std::size_t> parent(static_cast<std::size_t>(points.rows()));
+  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = i;
+  const auto find = [&](std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (const auto& tri : split.triangles) {
+    const std::size_t a = find(tri[0].index());
+    for (int k = 1; k < 3; ++k) {
+      const std::size_t b = find(tri[static_cast<std::size_t>(k)].index());
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+  }
+  Shells shells;
+  std::vector<std::size_t> id(parent.size(), SIZE_MAX);
+  std::vector<std::vector<std::size_t> > triangles;
+  for (std::size_t t = 0; t < split.triangles.size(); ++t) {
+    std::size_t& k = id[find(split.triangles[t][0].index())];
+    if (k == SIZE_MAX) {
+      k = shells.count++;
+      triangles.emplace_back();
+    }
+    shells.shell_of_triangle.push_back(k);
+    triangles[k].push_back(t);
+  }
+  std::vector<double> volume(shells.count, 0.0);
+  for (std::size_t t = 0; t < split.triangles.size(); ++t) {
+    const Eigen::Vector3d a = points.row(split.triangles[t][0].value()).transpose();
+    const Eigen::Vector3d b = points.row(split.triangles[t][1].value()).transpose();
+    const Eigen::Vector3d c = points.row(split.triangles[t][2].value()).transpose();
+    volume[shells.shell_of_triangle[t]] += a.dot(b.cross(c)) / 6.0;
+  }
+  if (shells.count == 1) {
+    shells.solids.push_back({0, {}});
+    return shells;
+  }
+  // Which shells each shell lies inside (one vertex of it tested against every other).
+  const auto inside = [&](std::size_t i, std::size_t j) {
+    const Eigen::Vector3d p = points.row(split.triangles[triangles[i][0]][0].value()).transpose();
+    return std::abs(winding(points, split, triangles[j], p)) > 0.5;
+  };
+  std::vector<std::size_t> solid_of(shells.count, SIZE_MAX);
+  for (std::size_t i = 0; i < shells.count; ++i) {
+    if (volume[i] <= 0.0) continue;
+    for (std::size_t j = 0; j < shells.count; ++j) {
+      if (j != i && volume[j] > 0.0 && inside(i, j)) {
+        throw Unsupported("tet interior: shell " + std::to_string(i) +
+                          " is a solid inside the cavity of another (a nesting the tet "
+                          "interior does not take); use --interior weave");
+      }
+    }
+    solid_of[i] = shells.solids.size();
+    shells.solids.push_back({i, {}});
+  }
+  for (std::size_t k = 0; k < shells.count; ++k) {
+    if (volume[k] > 0.0) continue;
+    std::size_t best = SIZE_MAX;
+    for (std::size_t i = 0; i < shells.count; ++i)
+      if (volume[i] > 0.0 && inside(k, i) && (best == SIZE_MAX || volume[i] < volume[best]))
+        best = i;
+    if (best == SIZE_MAX) {
+      throw InvalidInput("tet interior: shell " + std::to_string(k) +
+                         " faces inward (a cavity) but lies inside no solid; orient the "
+                         "surface outward");
+    }
+    shells.solids[solid_of[best]].second.push_back(k);
+  }
+  return shells;
+}
+
 }  // namespace
 
 weave::WeaveResult tet_interior(const SurfaceMesh& surface, const stc::TriangleSplit& split,
@@ -192,15 +293,28 @@ weave::WeaveResult tet_interior(const SurfaceMesh& surface, const stc::TriangleS
     throw InvalidInput("tet interior: the surface has " + std::to_string(num_surface) +
                        " nodes but " + std::to_string(surface.points.rows()) + " points");
 
-  // Gmsh tags: vertex k of the split is tag k + 1.
+  // Gmsh tags: the split's vertices shell by shell, each shell's in increasing order, from 1
+  // (Gmsh renumbers the nodes of each discrete surface to a contiguous range when it meshes;
+  // so numbered, that renumbering changes nothing).
+  const Shells shells = find_shells(surface.points, split);
+  std::vector<std::size_t> shell_of_node(num_surface, SIZE_MAX);
+  for (std::size_t t = 0; t < split.triangles.size(); ++t)
+    for (const NodeId v : split.triangles[t])
+      shell_of_node[v.index()] = shells.shell_of_triangle[t];
+  std::vector<std::size_t> vertex_of_tag(split.vertices.size());  // tag - 1 -> split vertex
+  for (std::size_t k = 0; k < split.vertices.size(); ++k) vertex_of_tag[k] = k;
+  std::stable_sort(vertex_of_tag.begin(), vertex_of_tag.end(), [&](std::size_t a, std::size_t b) {
+    return shell_of_node[split.vertices[a].index()] < shell_of_node[split.vertices[b].index()];
+  });
   std::vector<std::size_t> node_tags(split.vertices.size());
   std::vector<double> coords(3 * split.vertices.size());
   std::vector<std::size_t> tag_of(num_surface, 0);  // surface node -> tag
-  for (std::size_t k = 0; k < split.vertices.size(); ++k) {
-    node_tags[k] = k + 1;
-    tag_of[split.vertices[k].index()] = k + 1;
+  for (std::size_t i = 0; i < split.vertices.size(); ++i) {
+    const NodeId v = split.vertices[vertex_of_tag[i]];
+    node_tags[i] = i + 1;
+    tag_of[v.index()] = i + 1;
     for (int c = 0; c < 3; ++c)
-      coords[3 * k + static_cast<std::size_t>(c)] = surface.points(split.vertices[k].value(), c);
+      coords[3 * i + static_cast<std::size_t>(c)] = surface.points(v.value(), c);
   }
   std::vector<std::size_t> triangle_tags;
   triangle_tags.reserve(3 * split.triangles.size());
@@ -216,8 +330,8 @@ weave::WeaveResult tet_interior(const SurfaceMesh& surface, const stc::TriangleS
       for (std::size_t k = 0; k < 3; ++k) {
         const std::size_t a = triangle_tags[3 * t + k] - 1;
         const std::size_t b = triangle_tags[3 * t + (k + 1) % 3] - 1;
-        const double l = (surface.points.row(split.vertices[a].value()) -
-                          surface.points.row(split.vertices[b].value()))
+        const double l = (surface.points.row(split.vertices[vertex_of_tag[a]].value()) -
+                          surface.points.row(split.vertices[vertex_of_tag[b]].value()))
                              .norm();
         length[a] += l;
         length[b] += l;
@@ -228,7 +342,7 @@ weave::WeaveResult tet_interior(const SurfaceMesh& surface, const stc::TriangleS
     std::vector<Eigen::Vector3d> at(split.vertices.size());
     for (std::size_t k = 0; k < split.vertices.size(); ++k) {
       length[k] /= std::max(count[k], 1);
-      at[k] = surface.points.row(split.vertices[k].value()).transpose();
+      at[k] = surface.points.row(split.vertices[vertex_of_tag[k]].value()).transpose();
     }
     sizes.emplace(std::move(at), std::move(length));
   }
@@ -242,11 +356,34 @@ weave::WeaveResult tet_interior(const SurfaceMesh& surface, const stc::TriangleS
     const GmshModel model;
     set_tet_options();
     gmsh::model::add("stcweave_tet_interior");
-    const int s = gmsh::model::addDiscreteEntity(2);
-    gmsh::model::mesh::addNodes(2, s, node_tags, coords);
-    gmsh::model::mesh::addElementsByType(s, 2, {}, triangle_tags);
-    const int loop = gmsh::model::geo::addSurfaceLoop({s});
-    const int v = gmsh::model::geo::addVolume({loop});
+    // One discrete surface per shell, with its own nodes; one volume per solid shell, its
+    // cavities as holes.
+    std::vector<int> entity(shells.count);
+    std::vector<std::vector<std::size_t> > shell_tags(shells.count);
+    std::vector<std::vector<double> > shell_coords(shells.count);
+    std::vector<std::vector<std::size_t> > shell_triangles(shells.count);
+    for (std::size_t t = 0; t < split.triangles.size(); ++t) {
+      const std::size_t k = shells.shell_of_triangle[t];
+      for (std::size_t i = 0; i < 3; ++i) shell_triangles[k].push_back(triangle_tags[3 * t + i]);
+    }
+    // Each shell's nodes in increasing tag order: Gmsh renumbers them in the order added.
+    for (std::size_t i = 0; i < node_tags.size(); ++i) {
+      const std::size_t k = shell_of_node[split.vertices[vertex_of_tag[i]].index()];
+      shell_tags[k].push_back(node_tags[i]);
+      for (std::size_t c = 0; c < 3; ++c) shell_coords[k].push_back(coords[3 * i + c]);
+    }
+    for (std::size_t k = 0; k < shells.count; ++k) {
+      entity[k] = gmsh::model::addDiscreteEntity(2);
+      gmsh::model::mesh::addNodes(2, entity[k], shell_tags[k], shell_coords[k]);
+      gmsh::model::mesh::addElementsByType(entity[k], 2, {}, shell_triangles[k]);
+    }
+    std::vector<int> volumes;
+    for (const auto& [solid, cavities] : shells.solids) {
+      std::vector<int> loops{gmsh::model::geo::addSurfaceLoop({entity[solid]})};
+      for (const std::size_t k : cavities)
+        loops.push_back(gmsh::model::geo::addSurfaceLoop({entity[k]}));
+      volumes.push_back(gmsh::model::geo::addVolume(loops));
+    }
     gmsh::model::geo::synchronize();
     if (sizes) {
       gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
@@ -258,10 +395,27 @@ weave::WeaveResult tet_interior(const SurfaceMesh& surface, const stc::TriangleS
     }
     gmsh::model::mesh::generate(3);
     std::vector<double> parametric;
-    gmsh::model::mesh::getNodes(interior_tags, interior_coords, parametric, 3, v, false, false);
-    gmsh::model::mesh::getNodes(surface_tags, surface_coords, parametric, 2, s, false, false);
-    std::vector<std::size_t> tet_tags;
-    gmsh::model::mesh::getElementsByType(4, tet_tags, tet_nodes, v);
+    const auto append = [](auto& to, const auto& from) {
+      to.insert(to.end(), from.begin(), from.end());
+    };
+    for (const int v : volumes) {
+      std::vector<std::size_t> tags;
+      std::vector<double> xyz;
+      gmsh::model::mesh::getNodes(tags, xyz, parametric, 3, v, false, false);
+      append(interior_tags, tags);
+      append(interior_coords, xyz);
+      std::vector<std::size_t> tet_tags;
+      std::vector<std::size_t> nodes;
+      gmsh::model::mesh::getElementsByType(4, tet_tags, nodes, v);
+      append(tet_nodes, nodes);
+    }
+    for (const int e : entity) {
+      std::vector<std::size_t> tags;
+      std::vector<double> xyz;
+      gmsh::model::mesh::getNodes(tags, xyz, parametric, 2, e, false, false);
+      append(surface_tags, tags);
+      append(surface_coords, xyz);
+    }
   } catch (const std::bad_alloc&) {
     throw;
   } catch (...) {
@@ -296,7 +450,8 @@ weave::WeaveResult tet_interior(const SurfaceMesh& surface, const stc::TriangleS
   positions.resize(static_cast<Eigen::Index>(num_vertices), 3);
   positions.topRows(static_cast<Eigen::Index>(num_surface)) = surface.points;
   std::unordered_map<std::size_t, NodeId> node_of;
-  for (std::size_t k = 0; k < split.vertices.size(); ++k) node_of[k + 1] = split.vertices[k];
+  for (std::size_t i = 0; i < split.vertices.size(); ++i)
+    node_of[i + 1] = split.vertices[vertex_of_tag[i]];
   for (std::size_t k = 0; k < interior_tags.size(); ++k) {
     const NodeId id(num_surface + k);
     if (!node_of.emplace(interior_tags[k], id).second)
@@ -322,7 +477,7 @@ weave::WeaveResult tet_interior(const SurfaceMesh& surface, const stc::TriangleS
 
   TetFlips flips;
   if (options.flips) flips = flip_tets(positions, tets, options.flip_floor);
-  stc::TetSplit cut = stc::split_tets(split, num_vertices, tets);
+  stc::TetSplit cut = stc::split_tets(split, static_cast<std::size_t>(positions.rows()), tets);
   positions.conservativeResize(static_cast<Eigen::Index>(cut.complex.num_nodes), 3);
   for (std::size_t i = 0; i < cut.added_parents.size(); ++i) {
     Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();

@@ -276,6 +276,23 @@ TEST_F(CadCli, TwoHolePlateIsTriangleSplitAndGetsTheTetInteriorWithoutAWeave) {
   EXPECT_EQ(check.code, 0) << check.out;
 }
 
+// A box with a spherical cavity (one solid, two shells): its mixed surface would need an
+// annulus cut, so `auto` makes it triangle-split, and the tet interior fills the space
+// between the shells (Gmsh's volume with the cavity as a hole) without weaving.
+TEST_F(CadCli, BoxWithACavityGetsTheTetInteriorBetweenItsShells) {
+  STCWEAVE_SKIP_WITHOUT_GMSH();
+  const auto [r, report] =
+      mesh(data("box_cavity.step"), "bc", "--size 0.25 --surface-out " + at("bc.obj"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("2 shells for 1 solid(s): a cavity"));
+  EXPECT_EQ(report["interior"]["used"], "tets");
+  EXPECT_THAT(report["interior"]["reason"].get<std::string>(), HasSubstr("2 shells: not woven"));
+  EXPECT_EQ(report["quality"]["inverted"], 0);
+  EXPECT_GT(report["quality"]["min_scaled_jacobian"].get<double>(), 0.1);
+  const auto check = run_cli("check " + at("bc.vtk") + " --boundary " + at("bc.obj"));
+  EXPECT_EQ(check.code, 0) << check.out;
+}
+
 // The blind hole (genus 0, triangle-split): the woven star cannot see past the hole's rim and
 // kept inverted hexes (54 at 0.125); `--interior auto` keeps the split tetrahedral mesh
 // (docs/tet-interior.md), a valid mesh with no inverted hex, certified by `check` against the

@@ -225,13 +225,71 @@ TEST_F(TetInterior, TetsAreRefusedForASurfaceThatIsNotTriangleSplit) {
   EXPECT_EQ(r.mesh.complex.hexes.size(), 12u);
 }
 
-TEST_F(TetInterior, TetsTakeOneShellOnly) {
-  const SurfaceMesh one = split_lblock();
-  const SurfaceMesh two =
-      test::merged_surfaces({one, test::translated(one, Eigen::RowVector3d(10.0, 0.0, 0.0))});
+/// The pipeline with `--interior tets` on `surface`: valid against it, with no inverted hex.
+void expect_valid_tets(const SurfaceMesh& surface, const std::string& name) {
   MeshOptions options;
   options.interior.mode = InteriorMode::Tets;
-  EXPECT_THROW((void)mesh_file(test::file_of(two, "two"), options), Unsupported);
+  const MeshResult r = mesh_file(test::file_of(surface, name), options);
+  EXPECT_TRUE(r.interior.used);
+  EXPECT_GT(r.interior.tets, 0u);
+  const stc::ValidationReport v = stc::validate_hex_complex(r.mesh.complex, &r.surface.surface);
+  EXPECT_TRUE(v.valid) << v.summary();
+  EXPECT_TRUE(v.boundary_compared);
+  EXPECT_EQ(r.quality.inverted, 0u);
+}
+
+TEST_F(TetInterior, TetsFillTwoDisjointSolids) {
+  const SurfaceMesh one = split_lblock();
+  expect_valid_tets(
+      test::merged_surfaces({one, test::translated(one, Eigen::RowVector3d(10.0, 0.0, 0.0))}),
+      "two");
+}
+
+/// A triangle-split 4 x 4 x 4 box with a 2 x 2 x 2 cavity at its centre, the cavity's quads
+/// facing into it.
+SurfaceMesh hollow_box() {
+  const SurfaceMesh outer = triangle_split_of(test::box_surface(4, 4, 4));
+  const SurfaceMesh inner = test::reversed_surface(
+      test::translated(triangle_split_of(test::box_surface(2, 2, 2)), Eigen::RowVector3d(1, 1, 1)));
+  return test::merged_surfaces({outer, inner});
+}
+
+TEST_F(TetInterior, TetsFillASolidWithACavity) {
+  const SurfaceMesh hollow = hollow_box();
+  expect_valid_tets(hollow, "hollow");
+  // Auto takes the tets first on several shells and keeps them without weaving.
+  const MeshResult r = mesh_file(test::file_of(hollow, "hollow"));
+  EXPECT_TRUE(r.interior.used) << r.interior.reason;
+  EXPECT_NE(r.interior.reason.find("2 shells: not woven"), std::string::npos) << r.interior.reason;
+  EXPECT_EQ(r.seconds.other_interior, 0.0);
+  EXPECT_EQ(r.quality.inverted, 0u);
+}
+
+TEST_F(TetInterior, ASolidInsideACavityIsRefused) {
+  // The hollow box with a small solid box floating in its cavity: a nesting the tet interior
+  // does not take (Unsupported, not a wrong mesh).
+  const SurfaceMesh core = test::translated(test::box_surface(1, 1, 1, 0.5, 0.5, 0.5),
+                                            Eigen::RowVector3d(1.75, 1.75, 1.75));
+  const SurfaceMesh nested = test::merged_surfaces({hollow_box(), triangle_split_of(core)});
+  MeshOptions options;
+  options.interior.mode = InteriorMode::Tets;
+  try {
+    (void)mesh_file(test::file_of(nested, "nested"), options);
+    FAIL() << "a solid inside a cavity was accepted";
+  } catch (const Unsupported& e) {
+    EXPECT_NE(std::string(e.what()).find("nesting depth 2"), std::string::npos) << e.what();
+  }
+  // The stage itself refuses it too, for a caller that skips the pipeline's checks.
+  const std::optional<stc::TriangleSplit> split = stc::recognise_triangle_split(nested.surface);
+  ASSERT_TRUE(split.has_value());
+  Points positions;
+  try {
+    (void)tet_interior(nested, *split, {}, positions);
+    FAIL() << "a solid inside a cavity was accepted";
+  } catch (const Unsupported& e) {
+    EXPECT_NE(std::string(e.what()).find("inside the cavity of another"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

@@ -25,8 +25,9 @@ namespace stcweave::primal {
 /// How the pipeline fills a triangle-split surface.
 enum class InteriorMode {
   /// Weave it, and also split a tetrahedral mesh of it; keep the better (fewer inverted
-  /// hexes, then the larger minimum scaled Jacobian, then fewer hexes). Only for a
-  /// triangle-split surface of one shell with Gmsh at build time; anything else is woven.
+  /// hexes, then the larger minimum scaled Jacobian, then fewer hexes). With a handle or
+  /// several shells the tets go first and are kept without weaving when no hex is inverted.
+  /// Only for a closed triangle-split surface with Gmsh at build time; anything else is woven.
   Auto,
   /// Always weave (the seed's way).
   Weave,
@@ -78,8 +79,11 @@ struct TetInteriorReport {
 /// like a weave's (`hex_rule` "tet-split", `hex_shrink` -1, no trace); `positions` receives
 /// coordinates for every node of the complex: the surface's, Gmsh's for interior tet
 /// vertices, and each added node at the centre of its tet vertices.
-/// \pre `surface` is closed and oriented outward; `split` is its triangle split.
-/// \throw Unsupported when stcweave was built without Gmsh.
+/// Several shells are meshed together: one volume per shell of positive signed volume, with
+/// the shells of negative volume inside it (cavities) as holes.
+/// \pre `surface` is closed and oriented outward (a cavity's shell into the cavity); `split`
+///      is its triangle split.
+/// \throw Unsupported when stcweave was built without Gmsh, or for a solid inside a cavity.
 /// \throw InvalidInput when Gmsh cannot tetrahedralise the solid while keeping the boundary
 ///        triangles (for instance a self-intersecting surface), with Gmsh's reason.
 weave::WeaveResult tet_interior(const SurfaceMesh& surface, const stc::TriangleSplit& split,
