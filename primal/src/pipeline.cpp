@@ -67,8 +67,9 @@ bool may_be_triangle_split(const stc::QuadSurface& surface) {
 }
 
 /// `InteriorMode::Auto` on a triangle-split surface: the whole pipeline once with each
-/// interior, the better kept. Nothing when the surface is not triangle-split (or Gmsh is
-/// missing, or the file is not one readable shell): the caller weaves as usual.
+/// interior, the better kept; with a handle or several shells the tets first, kept alone when
+/// valid with no inverted hex. Nothing when the surface is not triangle-split (or Gmsh is
+/// missing, or the file is not a readable closed manifold surface): the caller weaves as usual.
 std::optional<MeshResult> compare_interiors(const MeshFile& file, const MeshOptions& options) {
   if (!has_tet_interior_support()) return std::nullopt;
   int genus = 0;
