@@ -21,12 +21,12 @@ Eigen::Vector3d at(const Points& points, NodeId n) {
   return points.row(n.value()).transpose();
 }
 
-double orient(const Points& points, NodeId a, NodeId b, NodeId c, NodeId d) {
-  const Eigen::Vector3d o = at(points, a);
-  return (at(points, b) - o).dot((at(points, c) - o).cross(at(points, d) - o));
-}
-
 }  // namespace
+
+double tet_volume6(const Points& points, const stc::Tet& tet) {
+  const Eigen::Vector3d o = at(points, tet[0]);
+  return (at(points, tet[1]) - o).dot((at(points, tet[2]) - o).cross(at(points, tet[3]) - o));
+}
 
 double tet_corner_quality(const Points& points, const stc::Tet& tet) {
   double worst = INFINITY;
@@ -95,12 +95,12 @@ TetFlips flip_tets(const Points& points, std::vector<stc::Tet>& tets, double flo
       bool closed = true;
       for (const NodeId r : ring) closed = closed && std::count(pairs.begin(), pairs.end(), r) == 2;
       if (!closed) continue;  // a boundary edge: its tets make an open fan
-      const double side_a = orient(points, ring[0], ring[1], ring[2], a);
-      const double side_b = orient(points, ring[0], ring[1], ring[2], b);
+      const double side_a = tet_volume6(points, {ring[0], ring[1], ring[2], a});
+      const double side_b = tet_volume6(points, {ring[0], ring[1], ring[2], b});
       if (!(side_a * side_b < 0.0)) continue;  // the edge does not pierce the ring's triangle
       stc::Tet ta{a, ring[0], ring[1], ring[2]};
       stc::Tet tb{b, ring[0], ring[2], ring[1]};
-      if (side_a > 0.0) {  // orient(r0, r1, r2, a) > 0 means (a, r0, r1, r2) is negative
+      if (side_a > 0.0) {  // (r0, r1, r2, a) positive means (a, r0, r1, r2) is negative
         std::swap(ta[2], ta[3]);
         std::swap(tb[2], tb[3]);
       }

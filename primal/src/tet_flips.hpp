@@ -18,6 +18,10 @@
 
 namespace stcweave::primal {
 
+/// Six times the signed volume of `tet`: (b - a) . ((c - a) x (d - a)), positive for a
+/// positively oriented tet.
+[[nodiscard]] double tet_volume6(const Points& points, const stc::Tet& tet);
+
 /// The worst corner of a tet as a hex corner: the least, over its four vertices, of the
 /// triple product of the three edges leaving the vertex divided by their lengths (1 for the
 /// corner of a cube, sqrt(2) / 2 for a regular tet; negative when inverted). It is the scaled

@@ -16,6 +16,7 @@
 
 #if STCWEAVE_HAVE_GMSH
 #include "gmsh_session.hpp"
+#include "shells.hpp"
 #include "tet_flips.hpp"
 #endif
 
@@ -110,14 +111,6 @@ void set_tet_options() {
   gmsh::option::setNumber("Mesh.ElementOrder", 1);
 }
 
-double signed_volume(const Points& p, const stc::Tet& t) {
-  const Eigen::Vector3d a = p.row(t[0].index());
-  const Eigen::Vector3d e1 = p.row(t[1].index()).transpose() - a;
-  const Eigen::Vector3d e2 = p.row(t[2].index()).transpose() - a;
-  const Eigen::Vector3d e3 = p.row(t[3].index()).transpose() - a;
-  return e1.dot(e2.cross(e3));
-}
-
 /// The nearest boundary vertex by a k-d tree (median splits, deterministic ties by index):
 /// the size Gmsh is to aim at anywhere inside is that vertex's edge length, grown with the
 /// distance to it.
@@ -185,6 +178,7 @@ class BoundarySizes {
 /// Gmsh volume it bounds: a shell of positive signed volume bounds a solid, one of negative
 /// volume (oriented into its cavity) is a cavity of the smallest solid around it.
 struct Shells {
+  std::vector<std::size_t> shell_of_node;  ///< per surface node (SIZE_MAX: none)
   std::vector<std::size_t> shell_of_triangle;
   std::size_t count = 0;
   /// Per solid shell, the cavity shells inside it.
@@ -210,30 +204,16 @@ double winding(const Points& points, const stc::TriangleSplit& split,
   return total / (4.0 * M_PI);
 }
 
-Shells find_shells(const Points& points, const stc::TriangleSplit& split) {
-  // Union-find over the triangles' vertex nodes.
-  std::vector<std::size_t> parent(static_cast<std::size_t>(points.rows()));
-  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = i;
-  const auto find = [&](std::size_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  for (const auto& tri : split.triangles) {
-    const std::size_t a = find(tri[0].index());
-    for (int k = 1; k < 3; ++k) {
-      const std::size_t b = find(tri[static_cast<std::size_t>(k)].index());
-      if (a != b) parent[std::max(a, b)] = std::min(a, b);
-    }
-  }
+Shells find_shells(const SurfaceMesh& surface, const stc::TriangleSplit& split) {
+  const Points& points = surface.points;
   Shells shells;
-  std::vector<std::size_t> id(parent.size(), SIZE_MAX);
-  std::vector<std::vector<std::size_t> > triangles;
+  const std::vector<int> label = shell_of_nodes(surface.surface, &shells.count);
+  shells.shell_of_node.assign(label.size(), SIZE_MAX);
+  for (std::size_t v = 0; v < label.size(); ++v)
+    if (label[v] >= 0) shells.shell_of_node[v] = static_cast<std::size_t>(label[v]);
+  std::vector<std::vector<std::size_t> > triangles(shells.count);
   for (std::size_t t = 0; t < split.triangles.size(); ++t) {
-    std::size_t& k = id[find(split.triangles[t][0].index())];
-    if (k == SIZE_MAX) {
-      k = shells.count++;
-      triangles.emplace_back();
-    }
+    const std::size_t k = shells.shell_of_node[split.triangles[t][0].index()];
     shells.shell_of_triangle.push_back(k);
     triangles[k].push_back(t);
   }
@@ -296,11 +276,8 @@ weave::WeaveResult tet_interior(const SurfaceMesh& surface, const stc::TriangleS
   // Gmsh tags: the split's vertices shell by shell, each shell's in increasing order, from 1
   // (Gmsh renumbers the nodes of each discrete surface to a contiguous range when it meshes;
   // so numbered, that renumbering changes nothing).
-  const Shells shells = find_shells(surface.points, split);
-  std::vector<std::size_t> shell_of_node(num_surface, SIZE_MAX);
-  for (std::size_t t = 0; t < split.triangles.size(); ++t)
-    for (const NodeId v : split.triangles[t])
-      shell_of_node[v.index()] = shells.shell_of_triangle[t];
+  const Shells shells = find_shells(surface, split);
+  const std::vector<std::size_t>& shell_of_node = shells.shell_of_node;
   std::vector<std::size_t> vertex_of_tag(split.vertices.size());  // tag - 1 -> split vertex
   for (std::size_t k = 0; k < split.vertices.size(); ++k) vertex_of_tag[k] = k;
   std::stable_sort(vertex_of_tag.begin(), vertex_of_tag.end(), [&](std::size_t a, std::size_t b) {
@@ -398,24 +375,22 @@ weave::WeaveResult tet_interior(const SurfaceMesh& surface, const stc::TriangleS
     const auto append = [](auto& to, const auto& from) {
       to.insert(to.end(), from.begin(), from.end());
     };
-    for (const int v : volumes) {
+    const auto append_nodes = [&](int dim, int tag, std::vector<std::size_t>& tags_to,
+                                  std::vector<double>& coords_to) {
       std::vector<std::size_t> tags;
       std::vector<double> xyz;
-      gmsh::model::mesh::getNodes(tags, xyz, parametric, 3, v, false, false);
-      append(interior_tags, tags);
-      append(interior_coords, xyz);
+      gmsh::model::mesh::getNodes(tags, xyz, parametric, dim, tag, false, false);
+      append(tags_to, tags);
+      append(coords_to, xyz);
+    };
+    for (const int v : volumes) {
+      append_nodes(3, v, interior_tags, interior_coords);
       std::vector<std::size_t> tet_tags;
       std::vector<std::size_t> nodes;
       gmsh::model::mesh::getElementsByType(4, tet_tags, nodes, v);
       append(tet_nodes, nodes);
     }
-    for (const int e : entity) {
-      std::vector<std::size_t> tags;
-      std::vector<double> xyz;
-      gmsh::model::mesh::getNodes(tags, xyz, parametric, 2, e, false, false);
-      append(surface_tags, tags);
-      append(surface_coords, xyz);
-    }
+    for (const int e : entity) append_nodes(2, e, surface_tags, surface_coords);
   } catch (const std::bad_alloc&) {
     throw;
   } catch (...) {
@@ -472,7 +447,7 @@ weave::WeaveResult tet_interior(const SurfaceMesh& surface, const stc::TriangleS
       }
       tets[t][i] = it->second;
     }
-    if (signed_volume(positions, tets[t]) < 0.0) std::swap(tets[t][2], tets[t][3]);
+    if (tet_volume6(positions, tets[t]) < 0.0) std::swap(tets[t][2], tets[t][3]);
   }
 
   TetFlips flips;
