@@ -265,6 +265,23 @@ TEST_F(TetInterior, TetsFillASolidWithACavity) {
   EXPECT_EQ(r.quality.inverted, 0u);
 }
 
+TEST_F(TetInterior, AnInwardShellInsideNoSolidIsRefused) {
+  // Two disjoint L-blocks, the second facing inward: a "cavity" that no solid holds, which
+  // only a caller skipping the pipeline's orientation can hand over.
+  const SurfaceMesh one = split_lblock();
+  const SurfaceMesh surface = test::merged_surfaces(
+      {one, test::reversed_surface(test::translated(one, Eigen::RowVector3d(10.0, 0.0, 0.0)))});
+  const std::optional<stc::TriangleSplit> split = stc::recognise_triangle_split(surface.surface);
+  ASSERT_TRUE(split.has_value());
+  Points positions;
+  try {
+    (void)tet_interior(surface, *split, {}, positions);
+    FAIL() << "an inward shell outside every solid was accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("lies inside no solid"), std::string::npos) << e.what();
+  }
+}
+
 TEST_F(TetInterior, ASolidInsideACavityIsRefused) {
   // The hollow box with a small solid box floating in its cavity: a nesting the tet interior
   // does not take (Unsupported, not a wrong mesh).
