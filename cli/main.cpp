@@ -6,6 +6,7 @@
 #include <iostream>
 #include <vector>
 
+#include "allocator.hpp"
 #include "commands.hpp"
 #include "stcweave/stc/errors.hpp"
 
@@ -65,6 +66,7 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  stcweave::cli::tune_allocator();
   try {
     return run(argc, argv);
   } catch (...) {  // e.g. out of memory while setting up the command line
