@@ -12,7 +12,8 @@ namespace stcweave::cli {
 void tune_allocator() {
 #if defined(__GLIBC__)
   const char* tunables = std::getenv("GLIBC_TUNABLES");
-  if (tunables != nullptr && std::string_view(tunables).find("glibc.malloc") != std::string_view::npos)
+  if (tunables != nullptr &&
+      std::string_view(tunables).find("glibc.malloc") != std::string_view::npos)
     return;
   constexpr int kMiB = 1024 * 1024;
   mallopt(M_MMAP_MAX, 0);  // no block gets its own mapping (glibc still maps if brk fails)

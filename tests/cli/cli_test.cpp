@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -62,6 +63,21 @@ TEST_F(Cli, MeshIsDeterministicByteForByte) {
   ASSERT_EQ(run("mesh " + data("lblock.obj") + " -o " + a.string() + " -q").code, 0);
   ASSERT_EQ(run("mesh " + data("lblock.obj") + " -o " + b.string() + " -q").code, 0);
   EXPECT_EQ(slurp(a), slurp(b));
+}
+
+// The program tunes glibc's malloc unless GLIBC_TUNABLES names a malloc tunable
+// (cli/allocator.cpp): the mesh must not depend on which allocator settings ran it.
+TEST_F(Cli, MeshDoesNotDependOnTheAllocatorSettings) {
+  const fs::path tuned = dir_ / "tuned.vtk", plain = dir_ / "plain.vtk";
+  const std::string args = "mesh " + data("lblock.obj") + " --pillow always -q -o ";
+  ASSERT_EQ(run(args + tuned.string()).code, 0);
+  ASSERT_EQ(setenv("GLIBC_TUNABLES", "glibc.malloc.check=0", 1), 0);
+  const CliRun r = run(args + plain.string());
+  unsetenv("GLIBC_TUNABLES");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const std::string a = slurp(tuned);
+  EXPECT_FALSE(a.empty());
+  EXPECT_EQ(a, slurp(plain));
 }
 
 TEST_F(Cli, TraceHasSelectionAndRuleLines) {
