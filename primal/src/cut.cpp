@@ -921,8 +921,12 @@ bool ray_hits(const Eigen::Vector3d& o, const Eigen::Vector3d& dir, const Eigen:
 
 }  // namespace
 
-weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptions& options,
+weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptions& uncut_options,
                                 const CutOptions& cut_options, SolidsReport* report) {
+  // The weaves of cut balls (CutOptions::ball_depth_filter); an uncut shell takes
+  // `uncut_options` as they are.
+  weave::WeaveOptions options = uncut_options;
+  if (!cut_options.ball_depth_filter) options.extended.depth_filter = false;
   SolidsReport local_report;
   SolidsReport& rep = report != nullptr ? *report : local_report;
   rep = SolidsReport{};
@@ -1326,7 +1330,7 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
     };
     if (cycles.empty()) {
       auto t1 = std::chrono::steady_clock::now();
-      ball = weave_ball(solid, options, next_final, cut_options);
+      ball = weave_ball(solid, uncut_options, next_final, cut_options);
       rep.weave_seconds += seconds_since(t1);
     } else if (const auto primary = cycles;
                !(cut_options.slab_first && try_slabs(primary)) &&
