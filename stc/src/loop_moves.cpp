@@ -64,8 +64,9 @@ const std::vector<Pattern>& patterns() {
   return p;
 }
 
-/// Lexicographic score: self-crossing quads, self-intersecting loops, front faces.
-using Score = std::tuple<std::size_t, std::size_t, std::size_t, std::size_t>;
+/// Lexicographic score: loops crossing themselves an odd number of times, self-crossing quads,
+/// self-intersecting loops, the curl gap (`LoopMoveOptions::curl_gap_crossings`), front faces.
+using Score = std::tuple<std::size_t, std::size_t, std::size_t, std::size_t, std::size_t>;
 
 struct State {
   std::vector<Quad> faces;
@@ -87,7 +88,7 @@ struct State {
 /// that takes one crossing of an even loop apart leaves an odd loop (one crossing left), which
 /// the score ranks behind every front that keeps the even loop; this order keeps it.
 Score surgery_rank(const Score& s) {
-  return {std::get<1>(s), std::get<0>(s), std::get<2>(s), std::get<3>(s)};
+  return {std::get<1>(s), std::get<0>(s), std::get<2>(s), std::get<3>(s), std::get<4>(s)};
 }
 
 int corner(const Quad& q, NodeId v) {
@@ -99,21 +100,104 @@ int corner(const Quad& q, NodeId v) {
 /// What the search minimises first: the self-crossings (untangle) or the front (fill).
 enum class Goal { SimpleLoops, EmptyFront };
 
-/// Traces every loop; sets face_loop, loop_self and the score.
-void evaluate(State& s, Goal goal = Goal::SimpleLoops) {
+/// The curl gap of one loop, given its passes in travel order (slot, side entered) and, per
+/// pass, whether its slot is a self-crossing of the loop: 0 unless the loop has two curls,
+/// else the least distance between two of them. A curl is a self-crossing whose two passes
+/// follow each other among the loop's self-crossing passes (no other self-crossing on the
+/// arc between them), its arc the passes strictly between. Distance: with `surface`, the
+/// fewest steps across front edges from a face of one curl's arc to a face of the other's;
+/// else the fewest passes strictly between the two curls along the loop. With
+/// `opposite_only`, only pairs of curls of opposite sense count (+1 when the second pass
+/// enters the quad one side after the first in the quad's order, else -1).
+std::size_t loop_curl_gap(const State& s, const std::vector<std::pair<Slot, int>>& passes,
+                          const std::vector<std::uint8_t>& crossing, bool surface,
+                          bool opposite_only) {
+  std::vector<std::size_t> at;  // positions of the self-crossing passes, in travel order
+  for (std::size_t i = 0; i < passes.size(); ++i)
+    if (crossing[i] != 0U) at.push_back(i);
+  const std::size_t k = at.size();
+  if (k < 4) return 0;
+  const std::size_t len = passes.size();
+  struct Curl {
+    std::size_t first;  // position of the pass opening the curl
+    std::size_t last;   // position of the pass closing it
+    int sense;
+  };
+  std::vector<Curl> curls;
+  for (std::size_t j = 0; j < k; ++j) {
+    const auto& a = passes[at[j]];
+    const auto& b = passes[at[(j + 1) % k]];
+    if (a.first != b.first) continue;
+    const int turn = ((b.second - a.second) % 4 + 4) % 4;
+    curls.push_back({at[j], at[(j + 1) % k], turn == 1 ? 1 : -1});
+  }
+  std::size_t best = std::numeric_limits<std::size_t>::max();
+  for (std::size_t i = 0; i < curls.size(); ++i) {
+    for (std::size_t j = i + 1; j < curls.size(); ++j) {
+      if (opposite_only && curls[i].sense == curls[j].sense) continue;
+      if (!surface) {
+        // Passes strictly between the end of one curl and the start of the other, either way.
+        const std::size_t ij = (curls[j].first + len - curls[i].last) % len - 1;
+        const std::size_t ji = (curls[i].first + len - curls[j].last) % len - 1;
+        best = std::min({best, ij, ji});
+        continue;
+      }
+      // Breadth-first from curl i's arc to curl j's, over face adjacency.
+      std::vector<std::int32_t> dist(s.faces.size(), -1);
+      std::vector<std::uint8_t> target(s.faces.size(), 0);
+      std::deque<Slot> queue;
+      for (std::size_t p = (curls[i].first + 1) % len; p != curls[i].last; p = (p + 1) % len) {
+        const auto f = static_cast<std::size_t>(passes[p].first);
+        if (dist[f] < 0) {
+          dist[f] = 0;
+          queue.push_back(passes[p].first);
+        }
+      }
+      for (std::size_t p = (curls[j].first + 1) % len; p != curls[j].last; p = (p + 1) % len)
+        target[static_cast<std::size_t>(passes[p].first)] = 1;
+      while (!queue.empty()) {
+        const auto f = static_cast<std::size_t>(queue.front());
+        queue.pop_front();
+        if (target[f] != 0U) {
+          best = std::min(best, static_cast<std::size_t>(dist[f]));
+          break;
+        }
+        if (static_cast<std::size_t>(dist[f]) + 1 >= best) break;
+        for (int side = 0; side < 4; ++side) {
+          const auto g = static_cast<std::size_t>(s.nbr[4 * f + static_cast<std::size_t>(side)] / 4);
+          if (dist[g] >= 0) continue;
+          dist[g] = dist[f] + 1;
+          queue.push_back(static_cast<Slot>(g));
+        }
+      }
+    }
+  }
+  return best == std::numeric_limits<std::size_t>::max() ? 0 : best;
+}
+
+/// Traces every loop; sets face_loop, loop_self and the score. With `curl` (the search's
+/// options), the score's curl gap (`LoopMoveOptions::curl_gap_crossings`); without, 0.
+void evaluate(State& s, Goal goal = Goal::SimpleLoops, const LoopMoveOptions* curl = nullptr) {
+  const std::size_t curl_crossings = curl != nullptr ? curl->curl_gap_crossings : 0;
   const std::size_t n = s.faces.size();
   s.face_loop.assign(2 * n, -1);
   s.loop_self.clear();
   std::size_t self_quads = 0;
   std::int32_t loops = 0;
+  const bool curls = curl_crossings > 0 && goal == Goal::SimpleLoops;
+  // With the curl gap: every loop's passes in travel order, and where each loop starts.
+  std::vector<std::pair<Slot, int>> passes;
+  std::vector<std::size_t> loop_start;
   for (std::size_t f = 0; f < n; ++f) {
     if (s.alive[f] == 0U) continue;
     for (int d = 0; d < 2; ++d) {
       if (s.face_loop[2 * f + static_cast<std::size_t>(d)] >= 0) continue;
       std::size_t g = f;
       int entry = d;
+      if (curls) loop_start.push_back(passes.size());
       while (s.face_loop[2 * g + static_cast<std::size_t>(entry % 2)] < 0) {
         s.face_loop[2 * g + static_cast<std::size_t>(entry % 2)] = loops;
+        if (curls) passes.emplace_back(static_cast<Slot>(g), entry);
         const Slot across = s.nbr[4 * g + static_cast<std::size_t>((entry + 2) % 4)];
         g = static_cast<std::size_t>(across / 4);
         entry = across % 4;
@@ -137,8 +221,25 @@ void evaluate(State& s, Goal goal = Goal::SimpleLoops) {
       ++per_loop[static_cast<std::size_t>(s.face_loop[2 * f])];
   const auto odd = static_cast<std::size_t>(
       std::count_if(per_loop.begin(), per_loop.end(), [](std::size_t c) { return c % 2 == 1; }));
-  s.score = goal == Goal::SimpleLoops ? Score{odd, self_quads, self_loops, s.live}
-                                      : Score{s.live, self_quads, self_loops, 0};
+  std::size_t gap = 0;
+  if (curls) {
+    loop_start.push_back(passes.size());
+    std::vector<std::pair<Slot, int>> one;
+    std::vector<std::uint8_t> crossing;
+    for (std::size_t l = 0; l < static_cast<std::size_t>(loops); ++l) {
+      if (per_loop[l] < 2 || per_loop[l] > curl_crossings) continue;
+      one.assign(passes.begin() + static_cast<std::ptrdiff_t>(loop_start[l]),
+                 passes.begin() + static_cast<std::ptrdiff_t>(loop_start[l + 1]));
+      crossing.assign(one.size(), 0);
+      for (std::size_t i = 0; i < one.size(); ++i) {
+        const auto f = static_cast<std::size_t>(one[i].first);
+        crossing[i] = s.face_loop[2 * f] == s.face_loop[2 * f + 1] ? 1 : 0;
+      }
+      gap += loop_curl_gap(s, one, crossing, curl->curl_gap_surface, curl->curl_gap_opposite);
+    }
+  }
+  s.score = goal == Goal::SimpleLoops ? Score{odd, self_quads, self_loops, gap, s.live}
+                                      : Score{s.live, self_quads, self_loops, 0, 0};
 }
 
 std::size_t self_crossings(const State& s) {
@@ -649,7 +750,7 @@ class Search {
             // dropped, by its order) the very fronts it needs.
             auto& seen_fronts = surgeries_only ? seen_surgery_fronts_ : seen_fronts_;
             if (!seen_fronts.insert(signature(next)).second) continue;
-            evaluate(next, goal_);
+            evaluate(next, goal_, &options_);
             next.moves.back().self_crossing_quads = self_crossings(next);
             ++tried;
             ++evaluations_;
@@ -678,7 +779,7 @@ class Search {
       if (s.live + 2 * m - 2 > max_faces_ || s.moves.size() + m > options_.max_moves) continue;
       State next = s;
       if (!apply_tunnel(next, st, false)) continue;
-      evaluate(next, goal_);
+      evaluate(next, goal_, &options_);
       ++evaluations_;
       work_ += next.faces.size() * m;
       next.rank = surgery_rank(next.score);
@@ -721,7 +822,7 @@ class Search {
     for (const Strip& st : chosen)
       if (!apply_tunnel(out, st, true))
         throw InternalError("loop moves: a tunnel that applied once does not apply again");
-    evaluate(out, goal_);
+    evaluate(out, goal_, &options_);
     return true;
   }
 
@@ -822,12 +923,14 @@ LoopMoveResult result_of(const State& s, std::size_t num_input_nodes) {
 void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t input_quads,
          LoopMoveResult& r) {
   Search search(options, input_quads, goal);
+  evaluate(current, goal, &options);
   const auto done = [&](const State& s) {
     return goal == Goal::SimpleLoops ? std::get<1>(s.score) == 0 : s.live == 0;
   };
-  // The part of the score the beam must lower (the goal's own figures).
+  // The part of the score the beam must lower (the goal's own figures, then the curl gap,
+  // which is 0 for the fill and for fronts without two curls on one loop).
   const auto key = [](const State& s) {
-    return std::make_tuple(std::get<0>(s.score), std::get<1>(s.score));
+    return std::make_tuple(std::get<0>(s.score), std::get<1>(s.score), std::get<3>(s.score));
   };
   std::string stop;
   while (!done(current)) {

@@ -82,6 +82,20 @@ struct LoopMoveOptions {
   /// When no single tunnel lowers (odd loops, self-crossing quads): the tunnels kept (by
   /// self-crossing quads first) to try a second tunnel after each.
   std::size_t tunnel_width = 8;
+  /// The curl gap, a tie-breaker of the score after the self-intersecting loops and before
+  /// the front faces. A curl of a loop is a self-crossing whose two passes follow each other
+  /// among the loop's self-crossing passes (no other self-crossing on the arc between them).
+  /// For every loop with 2 to `curl_gap_crossings` self-crossings, two of which are curls,
+  /// the least distance between two of its curls: the passes strictly between them along the
+  /// loop, or with `curl_gap_surface` the fewest steps across front edges between their arcs;
+  /// summed over those loops. With `curl_gap_opposite`, only curls of opposite sense pair up.
+  /// Lowering it slides two curls of one loop together through moves that change no other
+  /// figure (the residue a loop with Gauss word 1 1 2 2 leaves: two curls cancel only side by
+  /// side), so the beam also accepts a sequence that lowers it. A front without such a loop
+  /// scores 0 and is searched as without the term. `curl_gap_crossings` 0: off.
+  std::size_t curl_gap_crossings = 2;
+  bool curl_gap_surface = false;
+  bool curl_gap_opposite = false;
 };
 
 /// One move of the search, as applied.
