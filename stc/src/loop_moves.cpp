@@ -65,8 +65,10 @@ const std::vector<Pattern>& patterns() {
 }
 
 /// Lexicographic score: loops crossing themselves an odd number of times, self-crossing quads,
-/// self-intersecting loops, the curl gap (`LoopMoveOptions::curl_gap_crossings`), front faces.
-using Score = std::tuple<std::size_t, std::size_t, std::size_t, std::size_t, std::size_t>;
+/// self-intersecting loops, front faces.
+using Score = std::tuple<std::size_t, std::size_t, std::size_t, std::size_t>;
+/// The order a search keeps candidates in: the score (then 0), `surgery_rank` or `slide_rank`.
+using Rank = std::tuple<std::size_t, std::size_t, std::size_t, std::size_t, std::size_t>;
 
 struct State {
   std::vector<Quad> faces;
@@ -79,7 +81,8 @@ struct State {
   std::size_t num_nodes = 0;
   std::size_t live = 0;
   Score score{};
-  Score rank{};  ///< the order a search keeps candidates in (the score, or `surgery_rank`)
+  Rank rank{};  ///< the order a search keeps candidates in
+  std::size_t curl_gap = 0;  ///< `LoopMoveOptions::curl_gap_crossings`, from the last evaluation
   std::vector<std::int32_t> face_loop;  ///< 2 per slot, from the last evaluation
   std::vector<std::uint8_t> loop_self;  ///< per loop: crosses itself
 };
@@ -87,8 +90,18 @@ struct State {
 /// The order of the surgery look-ahead: self-crossing quads first, then odd loops. A surgery
 /// that takes one crossing of an even loop apart leaves an odd loop (one crossing left), which
 /// the score ranks behind every front that keeps the even loop; this order keeps it.
-Score surgery_rank(const Score& s) {
-  return {std::get<1>(s), std::get<0>(s), std::get<2>(s), std::get<3>(s), std::get<4>(s)};
+Rank surgery_rank(const Score& s) {
+  return {std::get<1>(s), std::get<0>(s), std::get<2>(s), std::get<3>(s), 0};
+}
+
+Rank score_rank(const Score& s) {
+  return {std::get<0>(s), std::get<1>(s), std::get<2>(s), std::get<3>(s), 0};
+}
+
+/// The order of the curl slide: the score with the curl gap before the front faces.
+Rank slide_rank(const State& s) {
+  return {std::get<0>(s.score), std::get<1>(s.score), std::get<2>(s.score), s.curl_gap,
+          std::get<3>(s.score)};
 }
 
 int corner(const Quad& q, NodeId v) {
@@ -238,8 +251,9 @@ void evaluate(State& s, Goal goal = Goal::SimpleLoops, const LoopMoveOptions* cu
       gap += loop_curl_gap(s, one, crossing, curl->curl_gap_surface, curl->curl_gap_opposite);
     }
   }
-  s.score = goal == Goal::SimpleLoops ? Score{odd, self_quads, self_loops, gap, s.live}
-                                      : Score{s.live, self_quads, self_loops, 0, 0};
+  s.curl_gap = gap;
+  s.score = goal == Goal::SimpleLoops ? Score{odd, self_quads, self_loops, s.live}
+                                      : Score{s.live, self_quads, self_loops, 0};
 }
 
 std::size_t self_crossings(const State& s) {
@@ -716,16 +730,27 @@ class Search {
   Search(const LoopMoveOptions& options, std::size_t input_quads, Goal goal)
       : options_(options), max_faces_(input_quads + options.max_extra_faces), goal_(goal) {}
 
+  /// What a call of `successors` looks for.
+  enum class Mode {
+    Beam,     ///< every move, ranked by the score
+    Surgery,  ///< the surgery look-ahead (`surgery_rank`)
+    Slide,    ///< the curl slide: every move, ranked by `slide_rank` (the curl gap counted)
+  };
+
   /// The candidate fronts one move away from `s`, best first, at most `keep` of them.
   std::vector<State> successors(const State& s, std::size_t keep) {
-    return successors(s, keep, false, options_.max_candidates);
+    return successors(s, keep, Mode::Beam, options_.max_candidates);
   }
 
-  /// With `surgeries_only`: only the two surgeries (the moves that reconnect loops), seeded
+  /// With `Mode::Surgery`: only the two surgeries (the moves that reconnect loops), seeded
   /// at every face of a self-intersecting loop however far from its crossings, at most
   /// `max_tried` evaluated, ranked by `surgery_rank` (self-crossing quads before odd loops).
-  std::vector<State> successors(const State& s, std::size_t keep, bool surgeries_only,
+  /// With `Mode::Slide`: as the beam, but each front's curl gap is evaluated and ranks it
+  /// (`slide_rank`). The surgery look-ahead and the slide keep their own record of the fronts
+  /// seen.
+  std::vector<State> successors(const State& s, std::size_t keep, Mode mode,
                                 std::size_t max_tried) {
+    const bool surgeries_only = mode == Mode::Surgery;
     std::vector<State> best;
     std::vector<std::vector<Slot>> seen;
     std::size_t tried = 0;
@@ -748,18 +773,18 @@ class Search {
             apply(next, c);
             // The surgery look-ahead keeps its own record: the beam may have seen (and
             // dropped, by its order) the very fronts it needs.
-            auto& seen_fronts = surgeries_only ? seen_surgery_fronts_ : seen_fronts_;
+            auto& seen_fronts = mode == Mode::Surgery ? seen_surgery_fronts_
+                                : mode == Mode::Slide   ? seen_slide_fronts_
+                                                        : seen_fronts_;
             if (!seen_fronts.insert(signature(next)).second) continue;
-            evaluate(next, goal_, &options_);
+            evaluate(next, goal_, mode == Mode::Slide ? &options_ : nullptr);
             next.moves.back().self_crossing_quads = self_crossings(next);
             ++tried;
             ++evaluations_;
             work_ += next.faces.size();
-            if (surgeries_only) {
-              next.rank = surgery_rank(next.score);
-            } else {
-              next.rank = next.score;
-            }
+            next.rank = mode == Mode::Surgery ? surgery_rank(next.score)
+                        : mode == Mode::Slide ? slide_rank(next)
+                                              : score_rank(next.score);
             insert(best, std::move(next), keep);
           }
         }
@@ -779,13 +804,13 @@ class Search {
       if (s.live + 2 * m - 2 > max_faces_ || s.moves.size() + m > options_.max_moves) continue;
       State next = s;
       if (!apply_tunnel(next, st, false)) continue;
-      evaluate(next, goal_, &options_);
+      evaluate(next, goal_);
       ++evaluations_;
       work_ += next.faces.size() * m;
       next.rank = surgery_rank(next.score);
       const auto pos = std::upper_bound(
           best.begin(), best.end(), next.rank,
-          [](const Score& v, const std::pair<State, Strip>& b) { return v < b.first.rank; });
+          [](const Rank& v, const std::pair<State, Strip>& b) { return v < b.first.rank; });
       if (static_cast<std::size_t>(pos - best.begin()) >= keep) continue;
       best.insert(pos, {std::move(next), st});
       if (best.size() > keep) best.pop_back();
@@ -822,7 +847,7 @@ class Search {
     for (const Strip& st : chosen)
       if (!apply_tunnel(out, st, true))
         throw InternalError("loop moves: a tunnel that applied once does not apply again");
-    evaluate(out, goal_, &options_);
+    evaluate(out, goal_);
     return true;
   }
 
@@ -834,7 +859,7 @@ class Search {
  private:
   static void insert(std::vector<State>& best, State&& s, std::size_t keep) {
     const auto pos = std::upper_bound(best.begin(), best.end(), s.rank,
-                                      [](const Score& v, const State& b) { return v < b.rank; });
+                                      [](const Rank& v, const State& b) { return v < b.rank; });
     if (static_cast<std::size_t>(pos - best.begin()) >= keep) return;
     best.insert(pos, std::move(s));
     if (best.size() > keep) best.pop_back();
@@ -847,6 +872,7 @@ class Search {
   std::size_t work_ = 0;
   std::unordered_set<std::uint64_t> seen_fronts_;
   std::unordered_set<std::uint64_t> seen_surgery_fronts_;
+  std::unordered_set<std::uint64_t> seen_slide_fronts_;
 };
 
 State initial_state(const QuadSurface& surface) {
@@ -923,16 +949,16 @@ LoopMoveResult result_of(const State& s, std::size_t num_input_nodes) {
 void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t input_quads,
          LoopMoveResult& r) {
   Search search(options, input_quads, goal);
-  evaluate(current, goal, &options);
   const auto done = [&](const State& s) {
     return goal == Goal::SimpleLoops ? std::get<1>(s.score) == 0 : s.live == 0;
   };
-  // The part of the score the beam must lower (the goal's own figures, then the curl gap,
-  // which is 0 for the fill and for fronts without two curls on one loop).
+  // The part of the score the beam must lower (the goal's own figures).
   const auto key = [](const State& s) {
-    return std::make_tuple(std::get<0>(s.score), std::get<1>(s.score), std::get<3>(s.score));
+    return std::make_tuple(std::get<0>(s.score), std::get<1>(s.score));
   };
   std::string stop;
+  bool sliding = false;  // a curl slide was taken and (odd loops, self-crossings) not lowered
+  std::tuple<std::size_t, std::size_t> sliding_from{};
   while (!done(current)) {
     if (current.moves.size() >= options.max_moves) {
       stop = "move bound (" + std::to_string(options.max_moves) + " moves) reached";
@@ -949,8 +975,15 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
     const std::size_t depth_bound = std::min(
         small ? std::max(options.beam_depth, options.small_beam_depth) : options.beam_depth,
         options.max_moves - current.moves.size());
-    std::vector<State> level = search.successors(current, width);
-    if (!level.empty() && level.front().score < current.score) {
+    // After a curl slide, and until (odd loops, self-crossing quads) fall, the greedy step
+    // ranks by `slide_rank` so that it does not undo the slide to save front faces.
+    if (sliding && key(current) < sliding_from) sliding = false;
+    if (sliding) evaluate(current, goal, &options);
+    std::vector<State> level =
+        sliding ? search.successors(current, width, Search::Mode::Slide, options.max_candidates)
+                : search.successors(current, width);
+    if (!level.empty() && (sliding ? slide_rank(level.front()) < slide_rank(current)
+                                   : level.front().score < current.score)) {
       current = std::move(level.front());
       continue;
     }
@@ -980,7 +1013,8 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
       // leaves an odd loop for the next surgery to fix.
       ++r.surgery_searches;
       std::vector<State> surgeries =
-          search.successors(current, options.surgery_width, true, options.surgery_candidates);
+          search.successors(current, options.surgery_width, Search::Mode::Surgery,
+                            options.surgery_candidates);
       for (std::size_t depth = 1; depth <= options.surgery_depth && !surgeries.empty(); ++depth) {
         if (key(surgeries.front()) < key(current)) {
           current = std::move(surgeries.front());
@@ -991,10 +1025,11 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
         std::vector<State> next;
         for (const State& s : surgeries) {
           for (State& t :
-               search.successors(s, options.surgery_width, true, options.surgery_candidates)) {
+               search.successors(s, options.surgery_width, Search::Mode::Surgery,
+                                 options.surgery_candidates)) {
             const auto pos =
                 std::upper_bound(next.begin(), next.end(), t.rank,
-                                 [](const Score& v, const State& b) { return v < b.rank; });
+                                 [](const Rank& v, const State& b) { return v < b.rank; });
             next.insert(pos, std::move(t));
             if (next.size() > options.surgery_width) next.pop_back();
           }
@@ -1010,6 +1045,43 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
         current = std::move(best);
         improved = true;
         ++r.tunnels;
+      }
+    }
+    if (!improved && goal == Goal::SimpleLoops && options.curl_gap_crossings > 0 &&
+        options.curl_slide_depth > 0) {
+      // The curl slide: a loop left with two curls (two self-crossings, each with no other on
+      // the arc between its passes) cancels them only once they are side by side; moves that
+      // bring them closer change no figure of the score, so look for a sequence that lowers
+      // the curl gap, (odd loops, self-crossing quads) not rising.
+      evaluate(current, goal, &options);
+      if (current.curl_gap > 0) {
+        const auto slide_key = [](const State& s) {
+          return std::make_tuple(std::get<0>(s.score), std::get<1>(s.score), s.curl_gap);
+        };
+        std::vector<State> slide{current};
+        for (std::size_t depth = 1; depth <= options.curl_slide_depth && !slide.empty();
+             ++depth) {
+          std::vector<State> next;
+          for (const State& s : slide) {
+            for (State& t : search.successors(s, options.curl_slide_width, Search::Mode::Slide,
+                                              options.max_candidates)) {
+              const auto pos =
+                  std::upper_bound(next.begin(), next.end(), t.rank,
+                                   [](const Rank& v, const State& b) { return v < b.rank; });
+              next.insert(pos, std::move(t));
+              if (next.size() > options.curl_slide_width) next.pop_back();
+            }
+          }
+          slide = std::move(next);
+          if (!slide.empty() && slide_key(slide.front()) < slide_key(current)) {
+            if (!sliding) sliding_from = key(current);
+            sliding = true;
+            current = std::move(slide.front());
+            improved = true;
+            ++r.curl_slides;
+            break;
+          }
+        }
       }
     }
     if (!improved && search.exhausted()) {
@@ -1043,6 +1115,7 @@ LoopMoveResult untangle_loops(const QuadSurface& surface, const LoopMoveOptions&
   r.beam_searches = stats.beam_searches;
   r.surgery_searches = stats.surgery_searches;
   r.tunnels = stats.tunnels;
+  r.curl_slides = stats.curl_slides;
   r.stop_reason = stats.stop_reason;
   return r;
 }
@@ -1062,6 +1135,7 @@ LoopMoveResult fill_front(const LoopMoveResult& start, const LoopMoveOptions& op
   r.beam_searches = start.beam_searches + stats.beam_searches;
   r.surgery_searches = start.surgery_searches + stats.surgery_searches;
   r.tunnels = start.tunnels + stats.tunnels;
+  r.curl_slides = start.curl_slides + stats.curl_slides;
   r.stop_reason = stats.stop_reason;
   r.simple = current.live == 0;
   return r;
