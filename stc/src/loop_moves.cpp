@@ -64,8 +64,11 @@ const std::vector<Pattern>& patterns() {
   return p;
 }
 
-/// Lexicographic score: self-crossing quads, self-intersecting loops, front faces.
+/// Lexicographic score: loops crossing themselves an odd number of times, self-crossing quads,
+/// self-intersecting loops, front faces.
 using Score = std::tuple<std::size_t, std::size_t, std::size_t, std::size_t>;
+/// The order a search keeps candidates in: the score (then 0), `surgery_rank` or `slide_rank`.
+using Rank = std::tuple<std::size_t, std::size_t, std::size_t, std::size_t, std::size_t>;
 
 struct State {
   std::vector<Quad> faces;
@@ -78,7 +81,8 @@ struct State {
   std::size_t num_nodes = 0;
   std::size_t live = 0;
   Score score{};
-  Score rank{};  ///< the order a search keeps candidates in (the score, or `surgery_rank`)
+  Rank rank{};  ///< the order a search keeps candidates in
+  std::size_t curl_gap = 0;  ///< `LoopMoveOptions::curl_gap_crossings`, from the last evaluation
   std::vector<std::int32_t> face_loop;  ///< 2 per slot, from the last evaluation
   std::vector<std::uint8_t> loop_self;  ///< per loop: crosses itself
 };
@@ -86,8 +90,18 @@ struct State {
 /// The order of the surgery look-ahead: self-crossing quads first, then odd loops. A surgery
 /// that takes one crossing of an even loop apart leaves an odd loop (one crossing left), which
 /// the score ranks behind every front that keeps the even loop; this order keeps it.
-Score surgery_rank(const Score& s) {
-  return {std::get<1>(s), std::get<0>(s), std::get<2>(s), std::get<3>(s)};
+Rank surgery_rank(const Score& s) {
+  return {std::get<1>(s), std::get<0>(s), std::get<2>(s), std::get<3>(s), 0};
+}
+
+Rank score_rank(const Score& s) {
+  return {std::get<0>(s), std::get<1>(s), std::get<2>(s), std::get<3>(s), 0};
+}
+
+/// The order of the curl slide: the score with the curl gap before the front faces.
+Rank slide_rank(const State& s) {
+  return {std::get<0>(s.score), std::get<1>(s.score), std::get<2>(s.score), s.curl_gap,
+          std::get<3>(s.score)};
 }
 
 int corner(const Quad& q, NodeId v) {
@@ -99,21 +113,104 @@ int corner(const Quad& q, NodeId v) {
 /// What the search minimises first: the self-crossings (untangle) or the front (fill).
 enum class Goal { SimpleLoops, EmptyFront };
 
-/// Traces every loop; sets face_loop, loop_self and the score.
-void evaluate(State& s, Goal goal = Goal::SimpleLoops) {
+/// The curl gap of one loop, given its passes in travel order (slot, side entered) and, per
+/// pass, whether its slot is a self-crossing of the loop: 0 unless the loop has two curls,
+/// else the least distance between two of them. A curl is a self-crossing whose two passes
+/// follow each other among the loop's self-crossing passes (no other self-crossing on the
+/// arc between them), its arc the passes strictly between. Distance: with `surface`, the
+/// fewest steps across front edges from a face of one curl's arc to a face of the other's;
+/// else the fewest passes strictly between the two curls along the loop. With
+/// `opposite_only`, only pairs of curls of opposite sense count (+1 when the second pass
+/// enters the quad one side after the first in the quad's order, else -1).
+std::size_t loop_curl_gap(const State& s, const std::vector<std::pair<Slot, int>>& passes,
+                          const std::vector<std::uint8_t>& crossing, bool surface,
+                          bool opposite_only) {
+  std::vector<std::size_t> at;  // positions of the self-crossing passes, in travel order
+  for (std::size_t i = 0; i < passes.size(); ++i)
+    if (crossing[i] != 0U) at.push_back(i);
+  const std::size_t k = at.size();
+  if (k < 4) return 0;
+  const std::size_t len = passes.size();
+  struct Curl {
+    std::size_t first;  // position of the pass opening the curl
+    std::size_t last;   // position of the pass closing it
+    int sense;
+  };
+  std::vector<Curl> curls;
+  for (std::size_t j = 0; j < k; ++j) {
+    const auto& a = passes[at[j]];
+    const auto& b = passes[at[(j + 1) % k]];
+    if (a.first != b.first) continue;
+    const int turn = ((b.second - a.second) % 4 + 4) % 4;
+    curls.push_back({at[j], at[(j + 1) % k], turn == 1 ? 1 : -1});
+  }
+  std::size_t best = std::numeric_limits<std::size_t>::max();
+  for (std::size_t i = 0; i < curls.size(); ++i) {
+    for (std::size_t j = i + 1; j < curls.size(); ++j) {
+      if (opposite_only && curls[i].sense == curls[j].sense) continue;
+      if (!surface) {
+        // Passes strictly between the end of one curl and the start of the other, either way.
+        const std::size_t ij = (curls[j].first + len - curls[i].last) % len - 1;
+        const std::size_t ji = (curls[i].first + len - curls[j].last) % len - 1;
+        best = std::min({best, ij, ji});
+        continue;
+      }
+      // Breadth-first from curl i's arc to curl j's, over face adjacency.
+      std::vector<std::int32_t> dist(s.faces.size(), -1);
+      std::vector<std::uint8_t> target(s.faces.size(), 0);
+      std::deque<Slot> queue;
+      for (std::size_t p = (curls[i].first + 1) % len; p != curls[i].last; p = (p + 1) % len) {
+        const auto f = static_cast<std::size_t>(passes[p].first);
+        if (dist[f] < 0) {
+          dist[f] = 0;
+          queue.push_back(passes[p].first);
+        }
+      }
+      for (std::size_t p = (curls[j].first + 1) % len; p != curls[j].last; p = (p + 1) % len)
+        target[static_cast<std::size_t>(passes[p].first)] = 1;
+      while (!queue.empty()) {
+        const auto f = static_cast<std::size_t>(queue.front());
+        queue.pop_front();
+        if (target[f] != 0U) {
+          best = std::min(best, static_cast<std::size_t>(dist[f]));
+          break;
+        }
+        if (static_cast<std::size_t>(dist[f]) + 1 >= best) break;
+        for (int side = 0; side < 4; ++side) {
+          const auto g = static_cast<std::size_t>(s.nbr[4 * f + static_cast<std::size_t>(side)] / 4);
+          if (dist[g] >= 0) continue;
+          dist[g] = dist[f] + 1;
+          queue.push_back(static_cast<Slot>(g));
+        }
+      }
+    }
+  }
+  return best == std::numeric_limits<std::size_t>::max() ? 0 : best;
+}
+
+/// Traces every loop; sets face_loop, loop_self and the score. With `curl` (the search's
+/// options), the score's curl gap (`LoopMoveOptions::curl_gap_crossings`); without, 0.
+void evaluate(State& s, Goal goal = Goal::SimpleLoops, const LoopMoveOptions* curl = nullptr) {
+  const std::size_t curl_crossings = curl != nullptr ? curl->curl_gap_crossings : 0;
   const std::size_t n = s.faces.size();
   s.face_loop.assign(2 * n, -1);
   s.loop_self.clear();
   std::size_t self_quads = 0;
   std::int32_t loops = 0;
+  const bool curls = curl_crossings > 0 && goal == Goal::SimpleLoops;
+  // With the curl gap: every loop's passes in travel order, and where each loop starts.
+  std::vector<std::pair<Slot, int>> passes;
+  std::vector<std::size_t> loop_start;
   for (std::size_t f = 0; f < n; ++f) {
     if (s.alive[f] == 0U) continue;
     for (int d = 0; d < 2; ++d) {
       if (s.face_loop[2 * f + static_cast<std::size_t>(d)] >= 0) continue;
       std::size_t g = f;
       int entry = d;
+      if (curls) loop_start.push_back(passes.size());
       while (s.face_loop[2 * g + static_cast<std::size_t>(entry % 2)] < 0) {
         s.face_loop[2 * g + static_cast<std::size_t>(entry % 2)] = loops;
+        if (curls) passes.emplace_back(static_cast<Slot>(g), entry);
         const Slot across = s.nbr[4 * g + static_cast<std::size_t>((entry + 2) % 4)];
         g = static_cast<std::size_t>(across / 4);
         entry = across % 4;
@@ -137,6 +234,24 @@ void evaluate(State& s, Goal goal = Goal::SimpleLoops) {
       ++per_loop[static_cast<std::size_t>(s.face_loop[2 * f])];
   const auto odd = static_cast<std::size_t>(
       std::count_if(per_loop.begin(), per_loop.end(), [](std::size_t c) { return c % 2 == 1; }));
+  std::size_t gap = 0;
+  if (curls) {
+    loop_start.push_back(passes.size());
+    std::vector<std::pair<Slot, int>> one;
+    std::vector<std::uint8_t> crossing;
+    for (std::size_t l = 0; l < static_cast<std::size_t>(loops); ++l) {
+      if (per_loop[l] < 2 || per_loop[l] > curl_crossings) continue;
+      one.assign(passes.begin() + static_cast<std::ptrdiff_t>(loop_start[l]),
+                 passes.begin() + static_cast<std::ptrdiff_t>(loop_start[l + 1]));
+      crossing.assign(one.size(), 0);
+      for (std::size_t i = 0; i < one.size(); ++i) {
+        const auto f = static_cast<std::size_t>(one[i].first);
+        crossing[i] = s.face_loop[2 * f] == s.face_loop[2 * f + 1] ? 1 : 0;
+      }
+      gap += loop_curl_gap(s, one, crossing, curl->curl_gap_surface, curl->curl_gap_opposite);
+    }
+  }
+  s.curl_gap = gap;
   s.score = goal == Goal::SimpleLoops ? Score{odd, self_quads, self_loops, s.live}
                                       : Score{s.live, self_quads, self_loops, 0};
 }
@@ -615,16 +730,27 @@ class Search {
   Search(const LoopMoveOptions& options, std::size_t input_quads, Goal goal)
       : options_(options), max_faces_(input_quads + options.max_extra_faces), goal_(goal) {}
 
+  /// What a call of `successors` looks for.
+  enum class Mode {
+    Beam,     ///< every move, ranked by the score
+    Surgery,  ///< the surgery look-ahead (`surgery_rank`)
+    Slide,    ///< the curl slide: every move, ranked by `slide_rank` (the curl gap counted)
+  };
+
   /// The candidate fronts one move away from `s`, best first, at most `keep` of them.
   std::vector<State> successors(const State& s, std::size_t keep) {
-    return successors(s, keep, false, options_.max_candidates);
+    return successors(s, keep, Mode::Beam, options_.max_candidates);
   }
 
-  /// With `surgeries_only`: only the two surgeries (the moves that reconnect loops), seeded
+  /// With `Mode::Surgery`: only the two surgeries (the moves that reconnect loops), seeded
   /// at every face of a self-intersecting loop however far from its crossings, at most
   /// `max_tried` evaluated, ranked by `surgery_rank` (self-crossing quads before odd loops).
-  std::vector<State> successors(const State& s, std::size_t keep, bool surgeries_only,
+  /// With `Mode::Slide`: as the beam, but each front's curl gap is evaluated and ranks it
+  /// (`slide_rank`). The surgery look-ahead and the slide keep their own record of the fronts
+  /// seen.
+  std::vector<State> successors(const State& s, std::size_t keep, Mode mode,
                                 std::size_t max_tried) {
+    const bool surgeries_only = mode == Mode::Surgery;
     std::vector<State> best;
     std::vector<std::vector<Slot>> seen;
     std::size_t tried = 0;
@@ -647,18 +773,18 @@ class Search {
             apply(next, c);
             // The surgery look-ahead keeps its own record: the beam may have seen (and
             // dropped, by its order) the very fronts it needs.
-            auto& seen_fronts = surgeries_only ? seen_surgery_fronts_ : seen_fronts_;
+            auto& seen_fronts = mode == Mode::Surgery ? seen_surgery_fronts_
+                                : mode == Mode::Slide   ? seen_slide_fronts_
+                                                        : seen_fronts_;
             if (!seen_fronts.insert(signature(next)).second) continue;
-            evaluate(next, goal_);
+            evaluate(next, goal_, mode == Mode::Slide ? &options_ : nullptr);
             next.moves.back().self_crossing_quads = self_crossings(next);
             ++tried;
             ++evaluations_;
             work_ += next.faces.size();
-            if (surgeries_only) {
-              next.rank = surgery_rank(next.score);
-            } else {
-              next.rank = next.score;
-            }
+            next.rank = mode == Mode::Surgery ? surgery_rank(next.score)
+                        : mode == Mode::Slide ? slide_rank(next)
+                                              : score_rank(next.score);
             insert(best, std::move(next), keep);
           }
         }
@@ -684,7 +810,7 @@ class Search {
       next.rank = surgery_rank(next.score);
       const auto pos = std::upper_bound(
           best.begin(), best.end(), next.rank,
-          [](const Score& v, const std::pair<State, Strip>& b) { return v < b.first.rank; });
+          [](const Rank& v, const std::pair<State, Strip>& b) { return v < b.first.rank; });
       if (static_cast<std::size_t>(pos - best.begin()) >= keep) continue;
       best.insert(pos, {std::move(next), st});
       if (best.size() > keep) best.pop_back();
@@ -733,7 +859,7 @@ class Search {
  private:
   static void insert(std::vector<State>& best, State&& s, std::size_t keep) {
     const auto pos = std::upper_bound(best.begin(), best.end(), s.rank,
-                                      [](const Score& v, const State& b) { return v < b.rank; });
+                                      [](const Rank& v, const State& b) { return v < b.rank; });
     if (static_cast<std::size_t>(pos - best.begin()) >= keep) return;
     best.insert(pos, std::move(s));
     if (best.size() > keep) best.pop_back();
@@ -746,6 +872,7 @@ class Search {
   std::size_t work_ = 0;
   std::unordered_set<std::uint64_t> seen_fronts_;
   std::unordered_set<std::uint64_t> seen_surgery_fronts_;
+  std::unordered_set<std::uint64_t> seen_slide_fronts_;
 };
 
 State initial_state(const QuadSurface& surface) {
@@ -830,6 +957,8 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
     return std::make_tuple(std::get<0>(s.score), std::get<1>(s.score));
   };
   std::string stop;
+  bool sliding = false;  // a curl slide was taken and (odd loops, self-crossings) not lowered
+  std::tuple<std::size_t, std::size_t> sliding_from{};
   while (!done(current)) {
     if (current.moves.size() >= options.max_moves) {
       stop = "move bound (" + std::to_string(options.max_moves) + " moves) reached";
@@ -846,8 +975,15 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
     const std::size_t depth_bound = std::min(
         small ? std::max(options.beam_depth, options.small_beam_depth) : options.beam_depth,
         options.max_moves - current.moves.size());
-    std::vector<State> level = search.successors(current, width);
-    if (!level.empty() && level.front().score < current.score) {
+    // After a curl slide, and until (odd loops, self-crossing quads) fall, the greedy step
+    // ranks by `slide_rank` so that it does not undo the slide to save front faces.
+    if (sliding && key(current) < sliding_from) sliding = false;
+    if (sliding) evaluate(current, goal, &options);
+    std::vector<State> level =
+        sliding ? search.successors(current, width, Search::Mode::Slide, options.max_candidates)
+                : search.successors(current, width);
+    if (!level.empty() && (sliding ? slide_rank(level.front()) < slide_rank(current)
+                                   : level.front().score < current.score)) {
       current = std::move(level.front());
       continue;
     }
@@ -877,7 +1013,8 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
       // leaves an odd loop for the next surgery to fix.
       ++r.surgery_searches;
       std::vector<State> surgeries =
-          search.successors(current, options.surgery_width, true, options.surgery_candidates);
+          search.successors(current, options.surgery_width, Search::Mode::Surgery,
+                            options.surgery_candidates);
       for (std::size_t depth = 1; depth <= options.surgery_depth && !surgeries.empty(); ++depth) {
         if (key(surgeries.front()) < key(current)) {
           current = std::move(surgeries.front());
@@ -888,10 +1025,11 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
         std::vector<State> next;
         for (const State& s : surgeries) {
           for (State& t :
-               search.successors(s, options.surgery_width, true, options.surgery_candidates)) {
+               search.successors(s, options.surgery_width, Search::Mode::Surgery,
+                                 options.surgery_candidates)) {
             const auto pos =
                 std::upper_bound(next.begin(), next.end(), t.rank,
-                                 [](const Score& v, const State& b) { return v < b.rank; });
+                                 [](const Rank& v, const State& b) { return v < b.rank; });
             next.insert(pos, std::move(t));
             if (next.size() > options.surgery_width) next.pop_back();
           }
@@ -907,6 +1045,43 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
         current = std::move(best);
         improved = true;
         ++r.tunnels;
+      }
+    }
+    if (!improved && goal == Goal::SimpleLoops && options.curl_gap_crossings > 0 &&
+        options.curl_slide_depth > 0) {
+      // The curl slide: a loop left with two curls (two self-crossings, each with no other on
+      // the arc between its passes) cancels them only once they are side by side; moves that
+      // bring them closer change no figure of the score, so look for a sequence that lowers
+      // the curl gap, (odd loops, self-crossing quads) not rising.
+      evaluate(current, goal, &options);
+      if (current.curl_gap > 0) {
+        const auto slide_key = [](const State& s) {
+          return std::make_tuple(std::get<0>(s.score), std::get<1>(s.score), s.curl_gap);
+        };
+        std::vector<State> slide{current};
+        for (std::size_t depth = 1; depth <= options.curl_slide_depth && !slide.empty();
+             ++depth) {
+          std::vector<State> next;
+          for (const State& s : slide) {
+            for (State& t : search.successors(s, options.curl_slide_width, Search::Mode::Slide,
+                                              options.max_candidates)) {
+              const auto pos =
+                  std::upper_bound(next.begin(), next.end(), t.rank,
+                                   [](const Rank& v, const State& b) { return v < b.rank; });
+              next.insert(pos, std::move(t));
+              if (next.size() > options.curl_slide_width) next.pop_back();
+            }
+          }
+          slide = std::move(next);
+          if (!slide.empty() && slide_key(slide.front()) < slide_key(current)) {
+            if (!sliding) sliding_from = key(current);
+            sliding = true;
+            current = std::move(slide.front());
+            improved = true;
+            ++r.curl_slides;
+            break;
+          }
+        }
       }
     }
     if (!improved && search.exhausted()) {
@@ -940,6 +1115,7 @@ LoopMoveResult untangle_loops(const QuadSurface& surface, const LoopMoveOptions&
   r.beam_searches = stats.beam_searches;
   r.surgery_searches = stats.surgery_searches;
   r.tunnels = stats.tunnels;
+  r.curl_slides = stats.curl_slides;
   r.stop_reason = stats.stop_reason;
   return r;
 }
@@ -959,6 +1135,7 @@ LoopMoveResult fill_front(const LoopMoveResult& start, const LoopMoveOptions& op
   r.beam_searches = start.beam_searches + stats.beam_searches;
   r.surgery_searches = start.surgery_searches + stats.surgery_searches;
   r.tunnels = start.tunnels + stats.tunnels;
+  r.curl_slides = start.curl_slides + stats.curl_slides;
   r.stop_reason = stats.stop_reason;
   r.simple = current.live == 0;
   return r;

@@ -63,8 +63,10 @@ TEST(CorpusSelfCrossing, SurgeryLookAheadTakesCylinderFurtherThanTheBeamAlone) {
   stc::LoopMoveOptions without;
   without.surgery_depth = 0;
   without.tunnel_length = 0;
+  without.curl_slide_depth = 0;
   stc::LoopMoveOptions no_tunnel;
   no_tunnel.tunnel_length = 0;
+  no_tunnel.curl_slide_depth = 0;
   const stc::LoopMoveResult beam = stc::untangle_loops(surface, without);
   const stc::LoopMoveResult look = stc::untangle_loops(surface, no_tunnel);
   EXPECT_EQ(beam.surgery_searches, 0U);
@@ -91,8 +93,11 @@ TEST(CorpusSelfCrossing, TunnelsUntangleFandiskAndTakeCylinderFurther) {
         primal::surface_of(primal::read_mesh(test::shared_data() / name)).surface;
     stc::LoopMoveOptions off;
     off.tunnel_length = 0;
+    off.curl_slide_depth = 0;
+    stc::LoopMoveOptions on;
+    on.curl_slide_depth = 0;
     const stc::LoopMoveResult before = stc::untangle_loops(surface, off);
-    const stc::LoopMoveResult now = stc::untangle_loops(surface);
+    const stc::LoopMoveResult now = stc::untangle_loops(surface, on);
     EXPECT_FALSE(before.simple) << before.stop_reason;
     EXPECT_EQ(before.tunnels, 0U);
     EXPECT_GT(now.tunnels, 0U);
@@ -106,6 +111,29 @@ TEST(CorpusSelfCrossing, TunnelsUntangleFandiskAndTakeCylinderFurther) {
     EXPECT_EQ(now.simple, loops.num_self_intersecting() == 0);
     EXPECT_TRUE(test::is_strong_quadrangulation(now.front));
   }
+}
+
+// The curl slide (stc::LoopMoveOptions::curl_slide_depth) on Gmsh's cylinder2_c3: with the
+// tunnels the search stalls on one loop with two curls 10 quads apart along it (2
+// self-crossing quads); sequences of moves that bring the curls together, ranked by that
+// distance, let them cancel (measured: simple, 50 attached hexes).
+TEST(CorpusSelfCrossing, CurlSlideUntanglesCylinder) {
+  STCWEAVE_SKIP_WITHOUT_SHARED_DATA();
+  const stc::QuadSurface surface =
+      primal::surface_of(
+          primal::read_mesh(test::shared_data() / "real/gmsh-quad/cylinder2_c3.boundary.obj"))
+          .surface;
+  stc::LoopMoveOptions off;
+  off.curl_slide_depth = 0;
+  const stc::LoopMoveResult before = stc::untangle_loops(surface, off);
+  const stc::LoopMoveResult now = stc::untangle_loops(surface);
+  EXPECT_FALSE(before.simple) << before.stop_reason;
+  EXPECT_EQ(before.curl_slides, 0U);
+  EXPECT_GT(now.curl_slides, 0U);
+  EXPECT_TRUE(now.simple) << now.stop_reason;
+  const stc::LoopSet loops = stc::find_loops(now.front, {.sides = false});
+  EXPECT_EQ(loops.num_self_crossing_quads(), 0U);
+  EXPECT_TRUE(test::is_strong_quadrangulation(now.front));
 }
 
 }  // namespace

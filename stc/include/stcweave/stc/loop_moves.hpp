@@ -82,6 +82,26 @@ struct LoopMoveOptions {
   /// When no single tunnel lowers (odd loops, self-crossing quads): the tunnels kept (by
   /// self-crossing quads first) to try a second tunnel after each.
   std::size_t tunnel_width = 8;
+  /// The curl slide, tried when the tunnel finds nothing too. A curl of a loop is a
+  /// self-crossing whose two passes follow each other among the loop's self-crossing passes
+  /// (no other self-crossing on the arc between them). The curl gap of a front: for every loop
+  /// with 2 to `curl_gap_crossings` self-crossings, two of which are curls, the least distance
+  /// between two of its curls (the passes strictly between them along the loop, or with
+  /// `curl_gap_surface` the fewest steps across front edges between their arcs; with
+  /// `curl_gap_opposite` only curls of opposite sense pair up), summed over those loops. Two
+  /// curls of one loop (the residue a loop with Gauss word 1 1 2 2 leaves) cancel only side
+  /// by side, and the moves that slide them together change no figure of the score; the slide
+  /// is a beam (`curl_slide_width` fronts per level, `curl_slide_depth` levels) ranked by the
+  /// score with the curl gap before the front faces, which accepts a sequence that lowers
+  /// (odd loops, self-crossing quads, curl gap). After one, the greedy step ranks the same
+  /// way until (odd loops, self-crossing quads) fall, so that it does not undo the slide.
+  /// Fronts whose search never stalls there are searched as without it.
+  /// `curl_gap_crossings` or `curl_slide_depth` 0: off.
+  std::size_t curl_gap_crossings = 2;
+  bool curl_gap_surface = false;
+  bool curl_gap_opposite = false;
+  std::size_t curl_slide_depth = 3;
+  std::size_t curl_slide_width = 8;
 };
 
 /// One move of the search, as applied.
@@ -114,6 +134,7 @@ struct LoopMoveResult {
   std::size_t beam_searches = 0;
   std::size_t surgery_searches = 0;  ///< surgery look-aheads run (the beam found nothing)
   std::size_t tunnels = 0;           ///< tunnels applied (rows of hexes, each one step)
+  std::size_t curl_slides = 0;       ///< curl slides accepted (`LoopMoveOptions::curl_slide_depth`)
   /// True when no loop of `front` crosses itself.
   bool simple = false;
   /// Why the search stopped ("simple", or which bound).
