@@ -81,11 +81,21 @@ struct State {
   std::size_t num_nodes = 0;
   std::size_t live = 0;
   Score score{};
-  Rank rank{};  ///< the order a search keeps candidates in
+  Rank rank{};               ///< the order a search keeps candidates in
   std::size_t curl_gap = 0;  ///< `LoopMoveOptions::curl_gap_crossings`, from the last evaluation
   std::vector<std::int32_t> face_loop;  ///< 2 per slot, from the last evaluation
   std::vector<std::uint8_t> loop_self;  ///< per loop: crosses itself
 };
+
+/// Inserts `t` into `list` (kept sorted by `rank`, equal ranks in insertion order) and keeps
+/// at most `width` of them.
+void insert_ranked(std::vector<State>& list, State&& t, std::size_t width) {
+  const auto pos = std::upper_bound(list.begin(), list.end(), t.rank,
+                                    [](const Rank& v, const State& b) { return v < b.rank; });
+  if (static_cast<std::size_t>(pos - list.begin()) >= width) return;
+  list.insert(pos, std::move(t));
+  if (list.size() > width) list.pop_back();
+}
 
 /// The order of the surgery look-ahead: self-crossing quads first, then odd loops. A surgery
 /// that takes one crossing of an even loop apart leaves an odd loop (one crossing left), which
@@ -177,7 +187,8 @@ std::size_t loop_curl_gap(const State& s, const std::vector<std::pair<Slot, int>
         }
         if (static_cast<std::size_t>(dist[f]) + 1 >= best) break;
         for (int side = 0; side < 4; ++side) {
-          const auto g = static_cast<std::size_t>(s.nbr[4 * f + static_cast<std::size_t>(side)] / 4);
+          const auto g =
+              static_cast<std::size_t>(s.nbr[4 * f + static_cast<std::size_t>(side)] / 4);
           if (dist[g] >= 0) continue;
           dist[g] = dist[f] + 1;
           queue.push_back(static_cast<Slot>(g));
@@ -774,8 +785,8 @@ class Search {
             // The surgery look-ahead keeps its own record: the beam may have seen (and
             // dropped, by its order) the very fronts it needs.
             auto& seen_fronts = mode == Mode::Surgery ? seen_surgery_fronts_
-                                : mode == Mode::Slide   ? seen_slide_fronts_
-                                                        : seen_fronts_;
+                                : mode == Mode::Slide ? seen_slide_fronts_
+                                                      : seen_fronts_;
             if (!seen_fronts.insert(signature(next)).second) continue;
             evaluate(next, goal_, mode == Mode::Slide ? &options_ : nullptr);
             next.moves.back().self_crossing_quads = self_crossings(next);
@@ -785,7 +796,7 @@ class Search {
             next.rank = mode == Mode::Surgery ? surgery_rank(next.score)
                         : mode == Mode::Slide ? slide_rank(next)
                                               : score_rank(next.score);
-            insert(best, std::move(next), keep);
+            insert_ranked(best, std::move(next), keep);
           }
         }
       }
@@ -857,14 +868,6 @@ class Search {
   }
 
  private:
-  static void insert(std::vector<State>& best, State&& s, std::size_t keep) {
-    const auto pos = std::upper_bound(best.begin(), best.end(), s.rank,
-                                      [](const Rank& v, const State& b) { return v < b.rank; });
-    if (static_cast<std::size_t>(pos - best.begin()) >= keep) return;
-    best.insert(pos, std::move(s));
-    if (best.size() > keep) best.pop_back();
-  }
-
   const LoopMoveOptions& options_;
   std::size_t max_faces_;
   Goal goal_;
@@ -1012,9 +1015,8 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
       // loops, ranked so that taking one crossing apart counts as progress even when it
       // leaves an odd loop for the next surgery to fix.
       ++r.surgery_searches;
-      std::vector<State> surgeries =
-          search.successors(current, options.surgery_width, Search::Mode::Surgery,
-                            options.surgery_candidates);
+      std::vector<State> surgeries = search.successors(
+          current, options.surgery_width, Search::Mode::Surgery, options.surgery_candidates);
       for (std::size_t depth = 1; depth <= options.surgery_depth && !surgeries.empty(); ++depth) {
         if (key(surgeries.front()) < key(current)) {
           current = std::move(surgeries.front());
@@ -1024,14 +1026,9 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
         if (depth == options.surgery_depth) break;
         std::vector<State> next;
         for (const State& s : surgeries) {
-          for (State& t :
-               search.successors(s, options.surgery_width, Search::Mode::Surgery,
-                                 options.surgery_candidates)) {
-            const auto pos =
-                std::upper_bound(next.begin(), next.end(), t.rank,
-                                 [](const Rank& v, const State& b) { return v < b.rank; });
-            next.insert(pos, std::move(t));
-            if (next.size() > options.surgery_width) next.pop_back();
+          for (State& t : search.successors(s, options.surgery_width, Search::Mode::Surgery,
+                                            options.surgery_candidates)) {
+            insert_ranked(next, std::move(t), options.surgery_width);
           }
         }
         surgeries = std::move(next);
@@ -1059,17 +1056,12 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
           return std::make_tuple(std::get<0>(s.score), std::get<1>(s.score), s.curl_gap);
         };
         std::vector<State> slide{current};
-        for (std::size_t depth = 1; depth <= options.curl_slide_depth && !slide.empty();
-             ++depth) {
+        for (std::size_t depth = 1; depth <= options.curl_slide_depth && !slide.empty(); ++depth) {
           std::vector<State> next;
           for (const State& s : slide) {
             for (State& t : search.successors(s, options.curl_slide_width, Search::Mode::Slide,
                                               options.max_candidates)) {
-              const auto pos =
-                  std::upper_bound(next.begin(), next.end(), t.rank,
-                                   [](const Rank& v, const State& b) { return v < b.rank; });
-              next.insert(pos, std::move(t));
-              if (next.size() > options.curl_slide_width) next.pop_back();
+              insert_ranked(next, std::move(t), options.curl_slide_width);
             }
           }
           slide = std::move(next);
