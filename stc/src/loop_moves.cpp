@@ -753,6 +753,16 @@ class Search {
     return successors(s, keep, Mode::Beam, options_.max_candidates);
   }
 
+  /// The next level of a look-ahead: the successors in `mode` of every front of `level`, the
+  /// best `keep` of them all by rank (in `Mode::Beam` the rank orders as the score does).
+  std::vector<State> next_level(const std::vector<State>& level, std::size_t keep, Mode mode,
+                                std::size_t max_tried) {
+    std::vector<State> next;
+    for (const State& s : level)
+      for (State& t : successors(s, keep, mode, max_tried)) insert_ranked(next, std::move(t), keep);
+    return next;
+  }
+
   /// With `Mode::Surgery`: only the two surgeries (the moves that reconnect loops), seeded
   /// at every face of a self-intersecting loop however far from its crossings, at most
   /// `max_tried` evaluated, ranked by `surgery_rank` (self-crossing quads before odd loops).
@@ -994,17 +1004,7 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
     ++r.beam_searches;
     bool improved = false;
     for (std::size_t depth = 2; depth <= depth_bound && !level.empty() && !improved; ++depth) {
-      std::vector<State> next;
-      for (const State& s : level) {
-        for (State& t : search.successors(s, width)) {
-          const auto pos =
-              std::upper_bound(next.begin(), next.end(), t.score,
-                               [](const Score& v, const State& b) { return v < b.score; });
-          next.insert(pos, std::move(t));
-          if (next.size() > width) next.pop_back();
-        }
-      }
-      level = std::move(next);
+      level = search.next_level(level, width, Search::Mode::Beam, options.max_candidates);
       if (!level.empty() && key(level.front()) < key(current)) {
         current = std::move(level.front());
         improved = true;
@@ -1024,14 +1024,8 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
           break;
         }
         if (depth == options.surgery_depth) break;
-        std::vector<State> next;
-        for (const State& s : surgeries) {
-          for (State& t : search.successors(s, options.surgery_width, Search::Mode::Surgery,
-                                            options.surgery_candidates)) {
-            insert_ranked(next, std::move(t), options.surgery_width);
-          }
-        }
-        surgeries = std::move(next);
+        surgeries = search.next_level(surgeries, options.surgery_width, Search::Mode::Surgery,
+                                      options.surgery_candidates);
       }
     }
     if (!improved && goal == Goal::SimpleLoops && options.tunnel_length > 0) {
@@ -1057,14 +1051,8 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
         };
         std::vector<State> slide{current};
         for (std::size_t depth = 1; depth <= options.curl_slide_depth && !slide.empty(); ++depth) {
-          std::vector<State> next;
-          for (const State& s : slide) {
-            for (State& t : search.successors(s, options.curl_slide_width, Search::Mode::Slide,
-                                              options.max_candidates)) {
-              insert_ranked(next, std::move(t), options.curl_slide_width);
-            }
-          }
-          slide = std::move(next);
+          slide = search.next_level(slide, options.curl_slide_width, Search::Mode::Slide,
+                                    options.max_candidates);
           if (!slide.empty() && slide_key(slide.front()) < slide_key(current)) {
             if (!sliding) sliding_from = key(current);
             sliding = true;
