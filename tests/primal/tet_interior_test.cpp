@@ -265,21 +265,30 @@ TEST_F(TetInterior, TetsFillASolidWithACavity) {
   EXPECT_EQ(r.quality.inverted, 0u);
 }
 
+/// The tet interior stage alone (no pipeline checks before it) refuses `surface` with an `E`
+/// whose message holds `fragment`; `what` names the input in the failure message.
+template <typename E>
+void expect_stage_refuses(const SurfaceMesh& surface, const std::string& fragment,
+                          const std::string& what) {
+  const std::optional<stc::TriangleSplit> split = stc::recognise_triangle_split(surface.surface);
+  ASSERT_TRUE(split.has_value());
+  Points positions;
+  try {
+    (void)tet_interior(surface, *split, {}, positions);
+    FAIL() << what << " was accepted";
+  } catch (const E& e) {
+    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+  }
+}
+
 TEST_F(TetInterior, AnInwardShellInsideNoSolidIsRefused) {
   // Two disjoint L-blocks, the second facing inward: a "cavity" that no solid holds, which
   // only a caller skipping the pipeline's orientation can hand over.
   const SurfaceMesh one = split_lblock();
   const SurfaceMesh surface = test::merged_surfaces(
       {one, test::reversed_surface(test::translated(one, Eigen::RowVector3d(10.0, 0.0, 0.0)))});
-  const std::optional<stc::TriangleSplit> split = stc::recognise_triangle_split(surface.surface);
-  ASSERT_TRUE(split.has_value());
-  Points positions;
-  try {
-    (void)tet_interior(surface, *split, {}, positions);
-    FAIL() << "an inward shell outside every solid was accepted";
-  } catch (const InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find("lies inside no solid"), std::string::npos) << e.what();
-  }
+  expect_stage_refuses<InvalidInput>(surface, "lies inside no solid",
+                                     "an inward shell outside every solid");
 }
 
 TEST_F(TetInterior, ASolidInsideACavityIsRefused) {
@@ -297,16 +306,8 @@ TEST_F(TetInterior, ASolidInsideACavityIsRefused) {
     EXPECT_NE(std::string(e.what()).find("nesting depth 2"), std::string::npos) << e.what();
   }
   // The stage itself refuses it too, for a caller that skips the pipeline's checks.
-  const std::optional<stc::TriangleSplit> split = stc::recognise_triangle_split(nested.surface);
-  ASSERT_TRUE(split.has_value());
-  Points positions;
-  try {
-    (void)tet_interior(nested, *split, {}, positions);
-    FAIL() << "a solid inside a cavity was accepted";
-  } catch (const Unsupported& e) {
-    EXPECT_NE(std::string(e.what()).find("inside the cavity of another"), std::string::npos)
-        << e.what();
-  }
+  expect_stage_refuses<Unsupported>(nested, "inside the cavity of another",
+                                    "a solid inside a cavity");
 }
 
 }  // namespace
