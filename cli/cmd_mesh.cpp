@@ -61,6 +61,9 @@ struct MeshArgs {
   std::size_t loop_moves_max = primal::SelfCrossingOptions{}.search.max_moves;
   std::size_t loop_moves_beam_depth = primal::SelfCrossingOptions{}.search.beam_depth;
   std::size_t loop_moves_beam_width = primal::SelfCrossingOptions{}.search.beam_width;
+  std::size_t loop_moves_evaluations = primal::SelfCrossingOptions{}.search.max_evaluations;
+  std::size_t loop_moves_work = primal::SelfCrossingOptions{}.search.max_work;
+  bool depth_filter_always = false;
 };
 
 nlohmann::json self_crossing_json(const primal::SelfCrossingReport& s) {
@@ -215,6 +218,7 @@ nlohmann::json trace_json(const weave::TraceEvent& e) {
 int run_mesh(const MeshArgs& a) {
   primal::MeshOptions options;
   apply_weave_options(a.weave, options.weave);
+  options.depth_filter_after_block = !a.depth_filter_always;
   options.weave.check = a.check;
   // The trace is streamed, so that a failed weave still leaves its trace behind.
   auto trace_text = std::make_shared<std::string>();
@@ -249,6 +253,8 @@ int run_mesh(const MeshArgs& a) {
   options.self_crossing.search.max_moves = a.loop_moves_max;
   options.self_crossing.search.beam_depth = a.loop_moves_beam_depth;
   options.self_crossing.search.beam_width = a.loop_moves_beam_width;
+  options.self_crossing.search.max_evaluations = a.loop_moves_evaluations;
+  options.self_crossing.search.max_work = a.loop_moves_work;
   const bool show_progress = a.progress || (!a.quiet && isatty(STDERR_FILENO) != 0);
   if (show_progress) {
     options.on_stage = [](const std::string& s) { std::cerr << "stcweave: " << s << "...\n"; };
@@ -347,6 +353,9 @@ int run_mesh(const MeshArgs& a) {
   report["cad"] = input.cad ? cad_json(*input.cad) : nlohmann::json(nullptr);
   report["rules"] = a.weave.rules;
   report["weave_options"] = weave_options_json(options.weave);
+  report["weave_options"]["depth_filter_after_block"] = options.depth_filter_after_block;
+  report["depth_filter_retry"] =
+      r.depth_filter_retry.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.depth_filter_retry);
   report["quads"] = r.surface.surface.quads.size();
   report["hexes"] = r.mesh.complex.hexes.size();
   report["nodes"] = r.mesh.complex.num_nodes;
@@ -465,6 +474,11 @@ int run_mesh(const MeshArgs& a) {
       if (!r.woven.recoveries.empty())
         std::cout << "; first after " << r.woven.recoveries.front().hexes_before << " hexes";
       std::cout << ")\n";
+    }
+    if (!r.depth_filter_retry.empty()) {
+      std::cout << "depth      the weave without the depth filter blocked; woven again with it ("
+                << r.depth_filter_retry.substr(0, 160)
+                << (r.depth_filter_retry.size() > 160 ? "..." : "") << ")\n";
     }
     if (!r.self_crossing.after_block.empty()) {
       const primal::SelfCrossingReport& x = r.self_crossing;
@@ -598,6 +612,17 @@ Action add_mesh_command(CLI::App& app) {
   sub->add_option("--loop-moves-beam-width", args->loop_moves_beam_width,
                   "loop moves: fronts kept per level of that look-ahead")
       ->capture_default_str();
+  sub->add_option("--loop-moves-evaluations", args->loop_moves_evaluations,
+                  "loop moves: candidate moves evaluated in all (the search's evaluation bound)")
+      ->capture_default_str();
+  sub->add_option("--loop-moves-work", args->loop_moves_work,
+                  "loop moves: work bound, the sum over evaluated candidates of the front's "
+                  "faces (about 30 s at the default)")
+      ->capture_default_str();
+  sub->add_flag("--depth-filter-always", args->depth_filter_always,
+                "extended: weave a genus-0 shell with the depth filter from the start (by default "
+                "it is woven without it first, and with it only when that weave blocks; "
+                "docs/extended-rules.md)");
   sub->add_flag("--no-untangle", args->no_untangle,
                 "keep the harmonic placement of the interior nodes (no untangling)");
   sub->add_option("--start", args->start,

@@ -1,6 +1,7 @@
 #include "stcweave/primal/pipeline.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <exception>
 #include <memory>
@@ -183,6 +184,28 @@ std::optional<MeshResult> compare_interiors(const MeshFile& file, const MeshOpti
 
 }  // namespace
 
+weave::WeaveResult weave_whole_shell(const stc::QuadSurface& surface, const MeshOptions& options,
+                                     const std::vector<std::array<double, 4>>& angles,
+                                     std::string& retry) {
+  retry.clear();
+  if (!options.depth_filter_after_block || options.weave.rules != weave::RuleSet::Extended ||
+      !options.weave.extended.depth_filter)
+    return weave::weave(surface, options.weave, angles);
+  weave::WeaveOptions first = options.weave;
+  first.extended.depth_filter = false;
+  std::vector<weave::TraceEvent> held;
+  if (options.weave.on_trace)
+    first.on_trace = [&held](const weave::TraceEvent& e) { held.push_back(e); };
+  try {
+    weave::WeaveResult r = weave::weave(surface, first, angles);
+    for (const weave::TraceEvent& e : held) options.weave.on_trace(e);
+    return r;
+  } catch (const WeaveError& blocked) {
+    retry = blocked.what();
+  }
+  return weave::weave(surface, options.weave, angles);
+}
+
 MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
   if (options.interior.mode == InteriorMode::Auto) {
     if (std::optional<MeshResult> compared = compare_interiors(file, options))
@@ -256,7 +279,7 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
                                   r.self_crossing);
   } else if (whole) {
     try {
-      r.woven = weave::weave(r.surface.surface, options.weave, angles);
+      r.woven = weave_whole_shell(r.surface.surface, options, angles, r.depth_filter_retry);
     } catch (const WeaveError& blocked) {
       // A loop-clean shell whose weave blocked even with the block recovery: the other ways
       // of the front-move stage (the fill by moves of a small front, the weave with recovery

@@ -317,6 +317,16 @@ TEST_F(Cli, WeavingOptionsAreCheckedAndRecorded) {
   EXPECT_FALSE(j.at("weave_options").at("depth_filter").get<bool>());
   EXPECT_EQ(j.at("weave_options").at("flat").get<double>(), 185.0);
   EXPECT_EQ(j.at("hexes").get<int>(), 10);
+  // The depth filter after a block (the default) is recorded, and so is its retry (none here).
+  EXPECT_TRUE(j.at("weave_options").at("depth_filter_after_block").get<bool>());
+  EXPECT_TRUE(j.at("depth_filter_retry").is_null());
+  const CliRun always = run("mesh " + data("lblock.obj") + " -o " + out.string() +
+                            " -q --depth-filter-always --report " + report.string());
+  ASSERT_EQ(always.code, 0) << always.out;
+  EXPECT_FALSE(nlohmann::json::parse(slurp(report))
+                   .at("weave_options")
+                   .at("depth_filter_after_block")
+                   .get<bool>());
 }
 
 TEST_F(Cli, TraceNamesTheDecidingFilterAndSurvivesAFailedWeave) {

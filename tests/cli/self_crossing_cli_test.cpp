@@ -45,6 +45,14 @@ TEST(SelfCrossingCli, AGivenUpSearchExitsWith3AndLeavesTheFront) {
   EXPECT_EQ(r.code, 3) << r.out;
   EXPECT_NE(r.out.find("self-intersecting loops"), std::string::npos) << r.out;
   EXPECT_TRUE(std::filesystem::exists(front)) << r.out;
+  // The evaluation and work bounds the message tells the user to raise are options too.
+  for (const std::string bound : {"--loop-moves-evaluations 1", "--loop-moves-work 1"}) {
+    const test::CliRun b =
+        test::run_cli("mesh " + in.string() + " -o " + temp("tangled.vtk").string() + " " + bound +
+                      " --front-on-failure " + front.string());
+    EXPECT_EQ(b.code, 3) << bound << ": " << b.out;
+    EXPECT_NE(b.out.find("evaluation bound"), std::string::npos) << bound << ": " << b.out;
+  }
   const test::CliRun off = test::run_cli("mesh " + in.string() + " -o " +
                                          temp("tangled.vtk").string() + " --no-loop-moves");
   EXPECT_EQ(off.code, 2) << off.out;

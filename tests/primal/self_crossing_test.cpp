@@ -72,6 +72,8 @@ TEST(SelfCrossing, GeneratedSpheresGiveCertifiedComplexesOrCleanRefusals) {
       max_hexes = std::max(max_hexes, r.complex.hexes.size());
     } catch (const WeaveError& e) {
       EXPECT_NE(std::string(e.what()).find("self-intersecting loops"), std::string::npos);
+      std::cout << "seed " << seed << " (" << mesh->surface.quads.size()
+                << " quads): not meshed: " << std::string(e.what()).substr(0, 300) << "\n";
     }
   }
   std::cout << "generated " << generated << " strong quadrangulations, " << self_crossing
@@ -267,6 +269,60 @@ TEST(SelfCrossing, PipelineRescuesALoopCleanSphereWhoseWeaveBlocks) {
     EXPECT_NE(what.find("every other way to weave the surface blocked too"), std::string::npos)
         << what;
   }
+}
+
+// An uncut genus-0 shell is woven under `extended` without the depth filter first, and with
+// it only when that weave blocks (MeshOptions::depth_filter_after_block, docs/extended-rules.md
+// "The depth filter in an uncut shell"). On the loop-clean 18-quad shapes without angles (every
+// edge flat), shape 0 completes both ways (153 hexes with the filter, 107 without), shape 23
+// blocks without it and completes with it (21 hexes).
+TEST(DepthFilter, AnUncutShellIsWovenWithoutTheDepthFilterUnlessThatBlocks) {
+  const std::vector<stc::QuadSurface>& clean = loop_clean_eighteen();
+  ASSERT_EQ(clean.size(), 95U);
+  const std::vector<std::array<double, 4>> no_angles;
+  const MeshOptions options;  // extended, depth filter on, after a block
+  ASSERT_TRUE(options.depth_filter_after_block);
+  weave::WeaveOptions without = options.weave;
+  without.extended.depth_filter = false;
+  std::string retry;
+
+  // Both weaves complete and differ: the one without the filter is kept.
+  const weave::WeaveResult with0 = weave::weave(clean[0], options.weave, no_angles);
+  const weave::WeaveResult without0 = weave::weave(clean[0], without, no_angles);
+  ASSERT_NE(with0.complex.hexes.size(), without0.complex.hexes.size())
+      << "shape 0 no longer tells the two weaves apart: pick another shape";
+  const weave::WeaveResult kept0 = weave_whole_shell(clean[0], options, no_angles, retry);
+  EXPECT_EQ(kept0.complex.hexes, without0.complex.hexes);
+  EXPECT_TRUE(retry.empty()) << retry;
+
+  // The option off: the weave as the options say, with the filter from the start.
+  MeshOptions always = options;
+  always.depth_filter_after_block = false;
+  EXPECT_EQ(weave_whole_shell(clean[0], always, no_angles, retry).complex.hexes,
+            with0.complex.hexes);
+  EXPECT_TRUE(retry.empty());
+  // `reliable` has no depth filter: its weave as it is.
+  MeshOptions reliable = options;
+  reliable.weave.rules = weave::RuleSet::Reliable;
+  EXPECT_EQ(weave_whole_shell(clean[0], reliable, no_angles, retry).complex.hexes,
+            weave::weave(clean[0], reliable.weave, no_angles).complex.hexes);
+
+  // The weave without the filter blocks: the weave with it is kept, and `retry` says why.
+  ASSERT_THROW((void)weave::weave(clean[23], without, no_angles), WeaveError)
+      << "shape 23 no longer blocks without the depth filter: pick another shape";
+  std::size_t alone = 0;
+  MeshOptions traced = options;
+  traced.weave.on_trace = [&alone](const weave::TraceEvent&) { ++alone; };
+  const weave::WeaveResult with23 = weave::weave(clean[23], traced.weave, no_angles);
+  std::size_t forwarded = 0;
+  traced.weave.on_trace = [&forwarded](const weave::TraceEvent&) { ++forwarded; };
+  const weave::WeaveResult kept23 = weave_whole_shell(clean[23], traced, no_angles, retry);
+  EXPECT_EQ(kept23.complex.hexes, with23.complex.hexes);
+  EXPECT_EQ(retry.find("weave: "), 0U) << retry;  // the first weave's WeaveError
+  EXPECT_TRUE(stc::validate_hex_complex(kept23.complex, &clean[23]).valid);
+  // Only the kept weave's trace reaches the caller, not the events of the weave that blocked.
+  EXPECT_GT(alone, 0U);
+  EXPECT_EQ(forwarded, alone);
 }
 
 // The two loop-clean 18-quad shapes of the sphere closure that stay blocked with the block

@@ -5,8 +5,10 @@
 /// (untangling) -> quality. Each stage is also a public function of its own; this only strings them
 /// together, times them and keeps every intermediate value for inspection.
 
+#include <array>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "stcweave/primal/cut.hpp"
 #include "stcweave/primal/diagnose.hpp"
@@ -54,6 +56,14 @@ struct MeshOptions {
   PositionOptions position;
   /// Settings of the handle cuts (surfaces of genus > 0, see cut.hpp).
   CutOptions cut;
+  /// A genus-0 shell woven whole under `extended` with the depth filter on
+  /// (`weave.extended.depth_filter`) is first woven without it, and only when that weave
+  /// blocks is it woven again with the filter (docs/extended-rules.md, "The depth filter in
+  /// an uncut shell"): measured, the filter's peeling lays extra sheets along the boundary
+  /// on unstructured surfaces, while on some small spheres it is what lets the weave close.
+  /// false: the weave options as given (the filter from the start). Cut balls have their own
+  /// setting (`CutOptions::ball_depth_filter`).
+  bool depth_filter_after_block = true;
   /// The interior of a triangle-split surface: woven, or a split tetrahedral mesh, or
   /// (`auto`, the default) both and the better kept (tet_interior.hpp, docs/tet-interior.md).
   TetInteriorOptions interior;
@@ -104,6 +114,10 @@ struct MeshResult {
   /// Whether the surface is triangle-split and which interior was kept (`used`: the tet
   /// split; then `woven` holds the split's hexes, not a weave's).
   TetInteriorReport interior;
+  /// With `MeshOptions::depth_filter_after_block`: empty when the weave without the depth
+  /// filter completed (or the option did not apply); otherwise why it blocked, the weave
+  /// kept being the one with the filter.
+  std::string depth_filter_retry;
   QualitySummary quality;
   StageSeconds seconds;
 };
@@ -112,6 +126,18 @@ struct MeshResult {
 /// then fewer inverted hexes, then the larger minimum scaled Jacobian, then fewer hexes.
 /// \return true when `a` is at least as good as `b`.
 [[nodiscard]] bool better_or_equal(const MeshResult& a, const MeshResult& b);
+
+/// The weave of a genus-0 shell that `mesh_file` weaves whole (no cut), before any rescue:
+/// `weave::weave` with `options.weave`, except that under `extended` with the depth filter on
+/// and `options.depth_filter_after_block`, the shell is first woven without the filter, and
+/// only when that weave blocks is it woven again as the options say; `retry` then holds why
+/// the first weave blocked (empty otherwise). The first weave's trace events are held back
+/// until it completes, so `options.weave.on_trace` sees the events of the weave kept only.
+/// \throw WeaveError when the weave kept blocks.
+[[nodiscard]] weave::WeaveResult weave_whole_shell(const stc::QuadSurface& surface,
+                                                   const MeshOptions& options,
+                                                   const std::vector<std::array<double, 4>>& angles,
+                                                   std::string& retry);
 
 /// Meshes the quad surface of `file` (its quads, or the boundary of its hexes).
 /// \throw TopologyError for a surface that cannot be woven (see `require_weavable`).
