@@ -32,7 +32,8 @@ class CandidateSet {
   /// Two candidates per loop of `loops` (side A at 2l, side B at 2l + 1) with their strip
   /// properties: loop, side, length, self_intersecting, crossed_sharp, side_sharp and
   /// parallel_to, and nonconvex_on_side where the loop's front component has no non-convex
-  /// face side at all (it is 0 then). With `check`, `complete` throws `InternalError` when a
+  /// face side at all (it is 0 then) or the side parities decide it (0, or 1 for "at least
+  /// one", until the loop is completed). With `check`, `complete` throws `InternalError` when a
   /// strip property differs from the one the floods give.
   CandidateSet(const Front& front, const FrontLoops& loops, const FrontComponents& components,
                const ExtendedParameters& parameters, Marks& nodes, Marks& faces, Marks& faces2,
@@ -61,6 +62,9 @@ class CandidateSet {
   ComponentTotals totals_;
   std::vector<TraceCandidate> all_;
   std::vector<unsigned> known_;
+  /// Per loop: `nonconvex_on_side` is known from the side parities (select/side_parity.hpp),
+  /// as 0 or 1 ("at least one"), until the loop is completed.
+  std::vector<char> by_parity_;
 };
 
 /// `rank(selection, ...)`'s first candidate, its reason and its filters, computing side

@@ -17,6 +17,7 @@
 #include "candidates.hpp"
 #include "face_table.hpp"
 #include "one_flood.hpp"
+#include "side_parity.hpp"
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/weave/select.hpp"
 
@@ -753,9 +754,12 @@ CandidateSet::CandidateSet(const Front& front, const FrontLoops& loops,
   const std::size_t n = loops.strips.size();
   all_.resize(2 * n);
   known_.assign(n, 0U);
+  by_parity_.assign(n, 0);
+  std::vector<char> crosses_itself(n, 0);
   for (std::size_t l = 0; l < n; ++l) {
     const Strip& strip = loops.strips[l];
     const bool self_intersecting = stamp_strip_faces(front, strip, faces).self_intersecting;
+    crosses_itself[l] = self_intersecting ? 1 : 0;
     const StripEdges edges = count_strip_edges(table_, strip, parameters);
     const std::size_t comp =
         components.component_of[front.face(face_of(strip.front())).nodes[0].index()];
@@ -773,6 +777,18 @@ CandidateSet::CandidateSet(const Front& front, const FrontLoops& loops,
             parallel_loop_in(table_, strip, static_cast<stc::LoopSide>(d), loops, parameters);
       }
     }
+  }
+  // Where a component has non-convex edges, which sides hold one, for every loop at once
+  // (select/side_parity.hpp): the non-convex filter reads only that, so it floods no side.
+  if (std::find(nonconvex.begin(), nonconvex.end(), 1) == nonconvex.end()) return;
+  const SideNonconvex parity =
+      side_nonconvex(front, table_, loops, components, crosses_itself, parameters.flat);
+  for (std::size_t l = 0; l < n; ++l) {
+    if (parity.known[l] == 0 || (known_[l] & side_property::kNonconvex) != 0U) continue;
+    known_[l] |= side_property::kNonconvex;
+    by_parity_[l] = 1;
+    // 1 stands for "at least one" until the loop is completed: the filter reads only != 0.
+    for (std::size_t d = 0; d < 2; ++d) all_[2 * l + d].nonconvex_on_side = parity.has[l][d];
   }
 }
 
@@ -792,11 +808,13 @@ void CandidateSet::complete(std::int32_t loop) {
     TraceCandidate& slot = all_[2 * l + d];
     c.loop = loop;
     if (parameters_.parallel_crossing && !c.self_intersecting) c.parallel_to = slot.parallel_to;
-    if (check_ && (c.side != slot.side || c.length != slot.length ||
-                   c.self_intersecting != slot.self_intersecting ||
-                   c.crossed_sharp != slot.crossed_sharp || c.side_sharp != slot.side_sharp ||
-                   ((known_[l] & side_property::kNonconvex) != 0U &&
-                    c.nonconvex_on_side != slot.nonconvex_on_side))) {
+    if (check_ &&
+        (c.side != slot.side || c.length != slot.length ||
+         c.self_intersecting != slot.self_intersecting || c.crossed_sharp != slot.crossed_sharp ||
+         c.side_sharp != slot.side_sharp ||
+         ((known_[l] & side_property::kNonconvex) != 0U &&
+          (by_parity_[l] != 0 ? (c.nonconvex_on_side == 0) != (slot.nonconvex_on_side == 0)
+                              : c.nonconvex_on_side != slot.nonconvex_on_side)))) {
       throw InternalError("weave: loop " + std::to_string(loop) + " side " + "AB"[d] +
                           ": its strip properties differ from those of its floods");
     }
