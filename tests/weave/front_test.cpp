@@ -114,6 +114,36 @@ TEST(Front, MergeRewritesFacesAndUnionFind) {
   EXPECT_FALSE(front.is_input_node(a));
 }
 
+TEST(Front, ChangeLogListsTheFacesAndNodesOfEveryChange) {
+  const auto cube = test::box_surface(1, 1, 1);
+  Front front(cube.surface);
+  Front::ChangeLog log;
+  front.remove_face(0);  // before the log is attached: not listed
+  front.attach_change_log(&log);
+  const stc::Quad q = front.face(3).nodes;
+  front.remove_face(3);
+  ASSERT_EQ(log.faces, std::vector<FaceIndex>{3});
+  EXPECT_EQ(log.nodes, std::vector<NodeId>(q.begin(), q.end()));
+  log.clear();
+  const FaceIndex f = front.add_face(q, FaceOwner{}, 0);
+  EXPECT_EQ(log.faces, std::vector<FaceIndex>{f});
+  EXPECT_EQ(log.nodes.size(), 4u);
+  log.clear();
+  // A merge lists the faces renamed (with their nodes after it) and the node gone.
+  const NodeId keep = q[0];
+  const NodeId gone = front.new_node();
+  front.add_face({gone, q[1], q[2], q[3]}, FaceOwner{}, 0);
+  log.clear();
+  front.merge_nodes(keep, gone);
+  ASSERT_EQ(log.faces.size(), 1u);
+  EXPECT_EQ(std::count(log.nodes.begin(), log.nodes.end(), keep), 1);
+  EXPECT_EQ(log.nodes.back(), gone);
+  front.attach_change_log(nullptr);
+  log.clear();
+  front.remove_face(f);
+  EXPECT_TRUE(log.faces.empty()) << "a detached log hears nothing";
+}
+
 TEST(Front, CornerOfFindsTheCornerHoldingANode) {
   const auto cube = test::box_surface(1, 1, 1);
   const Front front(cube.surface);

@@ -57,7 +57,9 @@ void Front::merge_nodes(NodeId keep, NodeId gone) {
   for (FaceIndex f : moved) {
     for (NodeId& n : faces_[static_cast<std::size_t>(f)].nodes)
       if (n == gone) n = keep;
+    log_face(f);
   }
+  if (change_log_ != nullptr) change_log_->nodes.push_back(gone);
   auto& kept = incident_[keep.index()];
   if (open_checkpoints_ > 0) {
     journal_.push_back({IncidenceChange::Kind::Merge, static_cast<std::uint32_t>(keep.index()),
@@ -86,6 +88,7 @@ FaceIndex Front::add_face(const stc::Quad& nodes, FaceOwner owner, std::int32_t 
   face.depth = depth;
   face.side_angle = side_angle;
   face.alive = true;
+  log_face(f);
   for (NodeId n : nodes) {
     incident_[n.index()].push_back(f);
     if (open_checkpoints_ > 0) {
@@ -98,6 +101,7 @@ FaceIndex Front::add_face(const stc::Quad& nodes, FaceOwner owner, std::int32_t 
 }
 
 void Front::remove_face(FaceIndex f) {
+  log_face(f);
   FrontFace& face = faces_[static_cast<std::size_t>(f)];
   for (NodeId n : face.nodes) {
     auto& list = incident_[n.index()];

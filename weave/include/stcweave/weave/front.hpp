@@ -125,6 +125,22 @@ class Front {
   /// Keeps the changes since `c` and closes it. \pre `c` is the innermost open checkpoint.
   void release(Checkpoint&& c);
 
+  /// The face slots and nodes changed since it was attached: every face added or removed (with
+  /// its nodes) and every node merge (both nodes and the faces renamed). A rolled-back change
+  /// stays listed. Lets a caller that keeps facts about a few faces (the strip of the loop
+  /// being shrunk, rules/shrink.cpp) re-examine only what changed.
+  struct ChangeLog {
+    std::vector<FaceIndex> faces;
+    std::vector<NodeId> nodes;
+    void clear() {
+      faces.clear();
+      nodes.clear();
+    }
+  };
+  /// Reports changes to `log` from now on (nullptr: to nowhere, the default). The caller keeps
+  /// `log` alive while it is attached.
+  void attach_change_log(ChangeLog* log) { change_log_ = log; }
+
   /// Checks that the front is a closed oriented 2-manifold quad surface: four distinct nodes
   /// per face, every directed edge once with its reverse present, incidence lists exact,
   /// every vertex link one cycle. Returns a description of the first violation.
@@ -153,6 +169,12 @@ class Front {
   /// front only one face does), so it needs no upkeep when faces come and go, merges rename
   /// nodes or a checkpoint is rolled back.
   mutable std::vector<std::array<FaceSide, 4>> across_hint_;
+  ChangeLog* change_log_ = nullptr;
+  void log_face(FaceIndex f) {
+    if (change_log_ == nullptr) return;
+    change_log_->faces.push_back(f);
+    for (NodeId n : faces_[static_cast<std::size_t>(f)].nodes) change_log_->nodes.push_back(n);
+  }
 };
 
 }  // namespace stcweave::weave
