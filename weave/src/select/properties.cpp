@@ -788,7 +788,8 @@ CandidateSet::CandidateSet(const Front& front, const FrontLoops& loops,
     known_[l] |= side_property::kNonconvex;
     by_parity_[l] = 1;
     // 1 stands for "at least one" until the loop is completed: the filter reads only != 0.
-    for (std::size_t d = 0; d < 2; ++d) all_[2 * l + d].nonconvex_on_side = parity.has[l][d];
+    for (std::size_t d = 0; d < 2; ++d)
+      all_[2 * l + d].nonconvex_on_side = parity.has[l][d] != 0 ? 1 : 0;
   }
 }
 

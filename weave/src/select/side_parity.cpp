@@ -1,5 +1,6 @@
 #include "side_parity.hpp"
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <span>

@@ -22,7 +22,7 @@
 ///
 /// `CandidateSet` checks the answer against the floods when `WeaveOptions::check` is on.
 
-#include <cstdint>
+#include <array>
 #include <vector>
 
 #include "face_table.hpp"
