@@ -10,6 +10,7 @@
 
 #include "driver.hpp"
 #include "select/face_table.hpp"
+#include "select/one_flood.hpp"
 #include "stcweave/primal/edge_angles.hpp"
 #include "stcweave/weave/select.hpp"
 #include "support/shapes.hpp"
@@ -38,8 +39,9 @@ Counts compare_on(const WeaveState& state, const std::string& where) {
         extended_properties(state.front, loops.strips[l], components, par, nodes, faces, faces2);
     self[l] = c[0].self_intersecting ? 1 : 0;
   }
+  const ComponentTotals totals = component_totals(state.front, table, components, par.flat);
   const SideNonconvex parity =
-      side_nonconvex(state.front, table, loops, components, self, par.flat);
+      side_nonconvex(state.front, table, loops, components, totals.faces, self, par.flat);
   for (std::size_t l = 0; l < loops.strips.size(); ++l) {
     if (self[l] != 0) {
       EXPECT_EQ(parity.known[l], 0) << where << ": loop " << l << " crosses itself";

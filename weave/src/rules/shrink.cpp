@@ -459,11 +459,8 @@ std::optional<std::string> shrink(WeaveState& state, WeaveContext& ctx, const St
         applied = r.applied;
         if (!applied) why = "cross refused: " + r.why;
       } else {
-        // The strip steps holding v on the shrinking side, in loop order.
-        const Strip at_v = index.steps_of(v);
-        std::vector<std::uint32_t> steps(at_v.size());
-        for (std::size_t i = 0; i < steps.size(); ++i) steps[i] = static_cast<std::uint32_t>(i);
-        const RuleResult r = blind_chord(state, ctx, v, at_v, index.faces(), steps);
+        // Tried at the strip steps holding v on the shrinking side, in loop order.
+        const RuleResult r = blind_chord(state, ctx, v, index.steps_of(v), index.faces());
         applied = r.applied;
         if (!applied) why = "blind chord refused: " + r.why;
       }

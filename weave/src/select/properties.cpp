@@ -714,25 +714,6 @@ namespace {
 /// side is checked against the front (SideCache::begin), so it never changes a result.
 thread_local SideCache side_cache;
 
-/// True when some face side of a component has an edge angle above `flat` (`table` with
-/// angles), per component: where none has, every side of every loop there has no non-convex
-/// edge.
-std::vector<char> components_with_nonconvex(const Front& front, const FaceTable& table,
-                                            const FrontComponents& components, double flat) {
-  std::vector<char> out(components.size.size(), 0);
-  for (std::size_t i = 0; i < front.face_capacity(); ++i) {
-    const auto f = static_cast<FaceIndex>(i);
-    if (!front.is_alive(f)) continue;
-    for (int k = 0; k < 4; ++k) {
-      if (table.angle_of(f, k) > flat) {
-        out[components.component_of[table.nodes_of(f)[0].index()]] = 1;
-        break;
-      }
-    }
-  }
-  return out;
-}
-
 }  // namespace
 
 CandidateSet::CandidateSet(const Front& front, const FrontLoops& loops,
@@ -749,8 +730,6 @@ CandidateSet::CandidateSet(const Front& front, const FrontLoops& loops,
       table_(face_table(front, true)),
       totals_(component_totals(front, table_, components, parameters.flat)) {
   side_cache.begin(front, table_);
-  const std::vector<char> nonconvex =
-      components_with_nonconvex(front, table_, components, parameters.flat);
   const std::size_t n = loops.strips.size();
   all_.resize(2 * n);
   known_.assign(n, 0U);
@@ -763,7 +742,8 @@ CandidateSet::CandidateSet(const Front& front, const FrontLoops& loops,
     const StripEdges edges = count_strip_edges(table_, strip, parameters);
     const std::size_t comp =
         components.component_of[front.face(face_of(strip.front())).nodes[0].index()];
-    if (nonconvex[comp] == 0) known_[l] = side_property::kNonconvex;
+    // No non-convex edge in the component: no side of its loops holds one.
+    if (totals_.nonconvex[comp] == 0) known_[l] = side_property::kNonconvex;
     for (std::size_t d = 0; d < 2; ++d) {
       TraceCandidate& c = all_[2 * l + d];
       c.loop = static_cast<std::int32_t>(l);
@@ -780,9 +760,11 @@ CandidateSet::CandidateSet(const Front& front, const FrontLoops& loops,
   }
   // Where a component has non-convex edges, which sides hold one, for every loop at once
   // (select/side_parity.hpp): the non-convex filter reads only that, so it floods no side.
-  if (std::find(nonconvex.begin(), nonconvex.end(), 1) == nonconvex.end()) return;
-  const SideNonconvex parity =
-      side_nonconvex(front, table_, loops, components, crosses_itself, parameters.flat);
+  if (std::all_of(totals_.nonconvex.begin(), totals_.nonconvex.end(),
+                  [](std::size_t k) { return k == 0; }))
+    return;
+  const SideNonconvex parity = side_nonconvex(front, table_, loops, components, totals_.faces,
+                                              crosses_itself, parameters.flat);
   for (std::size_t l = 0; l < n; ++l) {
     if (parity.known[l] == 0 || (known_[l] & side_property::kNonconvex) != 0U) continue;
     known_[l] |= side_property::kNonconvex;

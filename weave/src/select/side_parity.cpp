@@ -20,6 +20,7 @@ bool bit(std::span<const std::uint64_t> bits, std::size_t i) {
 
 SideNonconvex side_nonconvex(const Front& front, const FaceTable& table, const FrontLoops& loops,
                              const FrontComponents& components,
+                             std::span<const std::size_t> component_faces,
                              const std::vector<char>& self_intersecting, double flat) {
   const std::size_t num_loops = loops.strips.size();
   SideNonconvex out;
@@ -30,15 +31,9 @@ SideNonconvex side_nonconvex(const Front& front, const FaceTable& table, const F
   const std::size_t num_nodes = front.num_nodes();
 
   // Spheres: nodes - faces = 2 per component (every edge in two quads: E = 2F).
-  std::vector<std::size_t> faces_of_component(components.size.size(), 0);
-  for (std::size_t i = 0; i < front.face_capacity(); ++i) {
-    const auto f = static_cast<FaceIndex>(i);
-    if (front.is_alive(f))
-      ++faces_of_component[components.component_of[table.nodes_of(f)[0].index()]];
-  }
   std::vector<char> sphere(components.size.size(), 0);
   for (std::size_t c = 0; c < sphere.size(); ++c)
-    sphere[c] = components.size[c] == faces_of_component[c] + 2 ? 1 : 0;
+    sphere[c] = components.size[c] == component_faces[c] + 2 ? 1 : 0;
 
   // The nodes whose bit vectors are read: the ends of non-convex edges and one side-A corner
   // per loop (the corner at its first step's entry).

@@ -23,6 +23,8 @@
 /// `CandidateSet` checks the answer against the floods when `WeaveOptions::check` is on.
 
 #include <array>
+#include <cstddef>
+#include <span>
 #include <vector>
 
 #include "face_table.hpp"
@@ -40,12 +42,14 @@ struct SideNonconvex {
   std::vector<std::array<char, 2>> has;
 };
 
-/// The answer for every loop of `loops` (`table` with angles). Loops crossing themselves
+/// The answer for every loop of `loops` (`table` with angles; `component_faces`: the alive
+/// faces per component, `ComponentTotals::faces`). Loops crossing themselves
 /// (`self_intersecting[l]` non-zero) and loops on a component that is not a sphere are left
 /// unknown.
 [[nodiscard]] SideNonconvex side_nonconvex(const Front& front, const FaceTable& table,
                                            const FrontLoops& loops,
                                            const FrontComponents& components,
+                                           std::span<const std::size_t> component_faces,
                                            const std::vector<char>& self_intersecting, double flat);
 
 }  // namespace stcweave::weave

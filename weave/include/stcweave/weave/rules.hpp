@@ -96,7 +96,9 @@ RuleResult cross(WeaveState& state, WeaveContext& ctx, NodeId v);
 /// Blind chord formation at a node v of valence >= 4 on the shrinking side of `strip`
 /// (rules/blind_chord.cpp): a strip face f holding v on that side and the non-strip face g
 /// across f's shrinking-side edge at v share one edge; a new hex sits on both (two new nodes).
-/// `strip_faces` holds the strip's faces. \pre side A of `strip` is the shrinking side.
+/// `strip_faces` holds the faces of the loop's whole strip; `strip` may be only its steps that
+/// hold v (`shrink` passes those, from its strip index). \pre side A of `strip` is the
+/// shrinking side.
 /// \cite seed sect. 2.2 (Fig. 2, Fig. 3).
 RuleResult blind_chord(WeaveState& state, WeaveContext& ctx, NodeId v, const Strip& strip,
                        const FaceSet& strip_faces);
@@ -104,7 +106,7 @@ RuleResult blind_chord(WeaveState& state, WeaveContext& ctx, NodeId v, const Str
 /// The same rule given the positions in `strip` of the steps that hold v on the shrinking
 /// side (entry or entry + 3 is v), in strip order: it tries only those steps, so the result
 /// is that of the overload above (which scans the whole strip for them) when `steps` lists
-/// exactly those positions. `shrink` indexes them once per strip instead of once per node.
+/// exactly those positions.
 RuleResult blind_chord(WeaveState& state, WeaveContext& ctx, NodeId v, const Strip& strip,
                        const FaceSet& strip_faces, std::span<const std::uint32_t> steps);
 
