@@ -8,6 +8,12 @@
 /// With `extended`, when every side node is blocked, the geometric preconditions give way for
 /// one step (RWW: "it is usually necessary to turn the geometric rules off to complete the
 /// weave"). When every node is still blocked the shrink fails, naming each node and why.
+///
+/// A node whose cross or blind chord refused is skipped by later walks of the same shrink
+/// until a face at it changes (`StripIndex::known_refused`): on an O-grid cylinder most side
+/// nodes are flat corners the cross refuses, and re-asking each of them after every rule made
+/// the walk cost ~90 refusals per hex. With `WeaveOptions::check` each skipped rule is run
+/// anyway and must refuse.
 
 #include <algorithm>
 #include <cstdint>
@@ -104,6 +110,7 @@ class StripIndex {
       }
       if (!repair(*start, is_removed)) build(trace_strip(front_, face_of(*start), start->entry));
     }
+    for (NodeId v : log.nodes) forget_refusal(v);
     // Re-file the side nodes whose valence changed.
     for (NodeId v : log.nodes) {
       if (v.index() >= front_.num_nodes()) continue;
@@ -123,6 +130,20 @@ class StripIndex {
     }
     log.clear();
     return true;
+  }
+
+  /// Whether the cross or blind chord at `v` refused (with the geometric preconditions in
+  /// force) and nothing it reads changed since: a face at `v` came or went, two nodes of one
+  /// merged, or a face at `v` joined or left the strip. Those rules read only the faces at `v`
+  /// (their nodes, owners and carried angles, the faces across their sides, which hold `v`
+  /// too) and, for the blind chord, which of them are strip steps holding `v` on the
+  /// shrinking side; so the same rule at `v` refuses again and the walk may skip it.
+  [[nodiscard]] bool known_refused(NodeId v) const {
+    return v.index() < refused_.size() && refused_[v.index()] != 0;
+  }
+  void note_refused(NodeId v) {
+    if (refused_.size() <= v.index()) refused_.resize(front_.num_nodes() + 64, 0);
+    refused_[v.index()] = 1;
   }
 
   /// The side node with the fewest front faces, the first in loop order among equals.
@@ -272,6 +293,7 @@ class StripIndex {
     el.side = {quad_at(n, s.entry), quad_at(n, s.entry + 3)};
     el.edge = {quad_at(n, s.entry), quad_at(n, s.entry + 1)};
     el.mark = 0;
+    for (NodeId m : n) forget_refusal(m);
     const std::size_t i = 4 * static_cast<std::size_t>(f) + static_cast<std::size_t>(s.entry);
     if (at_.size() <= i) at_.resize(4 * front_.face_capacity() + 64, -1);
     at_[i] = x;
@@ -287,10 +309,14 @@ class StripIndex {
     unfile(x, 1);
     const Element& el = element(x);
     const FaceIndex f = face_of(el.step);
+    for (NodeId m : front_.face(f).nodes) forget_refusal(m);
     at_[4 * static_cast<std::size_t>(f) + static_cast<std::size_t>(el.step.entry)] = -1;
     const auto fi = static_cast<std::size_t>(f);
     if (--on_strip_[fi] == 0 && fi < marked_capacity_) face_marks_.set(fi, 0);
     free_.push_back(x);
+  }
+  void forget_refusal(NodeId v) {
+    if (v.index() < refused_.size()) refused_[v.index()] = 0;
   }
   void clear() {
     if (start_ >= 0) {
@@ -371,6 +397,7 @@ class StripIndex {
   std::int32_t start_ = -1;
   std::uint32_t stamp_ = 0;
   std::vector<std::int32_t> removed_;
+  std::vector<std::uint8_t> refused_;  ///< per node, 1: `known_refused`
   Strip fresh_;
   Marks seen_;
   std::uint32_t walk_seen_ = 0;
@@ -401,6 +428,16 @@ void check_index(const Front& front, StripIndex& index, const Strip& expected) {
     throw InternalError("weave: the shrink's side node order differs from a scan of the strip");
 }
 
+/// With `WeaveOptions::check`: a rule the walk skipped as a known refusal applied.
+[[noreturn]] void remembered_refusal_applied(std::size_t valence, NodeId v) {
+  std::string what = "weave: the shrink remembered a refusal of the ";
+  what += valence == 3 ? "cross" : "blind chord";
+  what += " at n";
+  what += std::to_string(v.value());
+  what += " from an unchanged neighbourhood, and the rule applied";
+  throw InternalError(what);
+}
+
 }  // namespace
 
 std::optional<std::string> shrink(WeaveState& state, WeaveContext& ctx, const Strip& initial,
@@ -416,6 +453,7 @@ std::optional<std::string> shrink(WeaveState& state, WeaveContext& ctx, const St
   } detach{front};
   const bool check = ctx.options.check;
   std::vector<Transversal> check_edges;  // with `check`: the strip's, for `retrace`
+  bool walk_everything = false;          // the next walk skips no known refusal
   for (;;) {
     seam_fixpoint(state, ctx);
     Strip expected;  // with `check`: what `retrace` gives
@@ -443,9 +481,25 @@ std::optional<std::string> shrink(WeaveState& state, WeaveContext& ctx, const St
     index.begin_walk();
     std::string reasons;
     bool applied = false;
+    // Refusals are remembered while the geometric preconditions are in force (a relaxed step
+    // evaluates every node); a walk that skipped one and found nothing is walked again
+    // without skipping, so that the refusal message names every node as before.
+    const bool skip_known = !ctx.relax_geometry && !walk_everything;
+    bool skipped = false;
+    walk_everything = false;
     for (NodeId v = index.next_node(); v.is_valid(); v = index.next_node()) {
       std::string why;
       const std::size_t k = front.valence(v);
+      if (k >= 3 && skip_known && index.known_refused(v)) {
+        skipped = true;
+        // With `check`, the rule runs all the same: it must refuse again.
+        if (check && (k == 3 ? cross(state, ctx, v)
+                             : blind_chord(state, ctx, v, index.steps_of(v), index.faces()))
+                         .applied) {
+          remembered_refusal_applied(k, v);
+        }
+        continue;
+      }
       if (k == 2) {
         why = "valence 2 but its seam is blocked";
         const RuleResult r = seam(state, ctx, v);
@@ -468,7 +522,12 @@ std::optional<std::string> shrink(WeaveState& state, WeaveContext& ctx, const St
       // A rule refuses before it moves anything, so the walk goes on over the same front.
       if (!changes.faces.empty() || !changes.nodes.empty())
         throw InternalError("weave: a refused rule changed the front (" + why + ")");
+      if (k >= 3 && !ctx.relax_geometry) index.note_refused(v);
       if (reasons.size() < 600) reasons += (reasons.empty() ? "" : "; ") + v.str() + ": " + why;
+    }
+    if (!applied && skipped) {
+      walk_everything = true;
+      continue;
     }
     if (!applied && ctx.extended() && ctx.parameters().flat_cross_precondition &&
         !ctx.relax_geometry) {
