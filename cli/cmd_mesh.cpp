@@ -281,8 +281,8 @@ int run_mesh(const MeshArgs& a) {
   const primal::Format out_format = a.output_format == "auto"
                                         ? primal::format_from_path(a.output)
                                         : primal::format_from_name(a.output_format);
-  // Cell data and the browser page: the digest keeps what they show of the trace (the
-  // selection of each shrink, the node of each rule), not the whole trace.
+  // Cell data and the browser page show the weave's history (`WeaveResult::shrinks`,
+  // `hex_node`), which the weave records without a trace.
   if (!a.html.empty() && !viewer::has_three_js()) {
     throw Unsupported(
         "--html: this stcweave was built without three.js, so it cannot make the "
@@ -292,16 +292,6 @@ int run_mesh(const MeshArgs& a) {
       out_format == primal::Format::Vtk || out_format == primal::Format::Vtu ||
       out_format == primal::Format::Msh || out_format == primal::Format::Msh2;
   const bool want_cell_data = (!a.no_cell_data && format_has_data) || !a.html.empty();
-  auto digest = std::make_shared<primal::TraceDigest>();
-  if (want_cell_data) {
-    // The cell data read only the candidate each selection chose.
-    if (a.trace.empty()) options.weave.trace_chosen_only = true;
-    options.weave.on_trace = [previous = options.weave.on_trace,
-                              digest](const weave::TraceEvent& e) {
-      if (previous) previous(e);
-      digest->add(e);
-    };
-  }
   // A CAD input is meshed into a quad surface first (cad_input.hpp); any other is read.
   const InputSurface input = read_input(
       a.input,
@@ -328,7 +318,7 @@ int run_mesh(const MeshArgs& a) {
   const bool inverted_left = a.fail_on_inverted && r.quality.inverted > 0;
   const bool write_mesh = !inverted_left || a.keep_invalid;
   const auto t1 = std::chrono::steady_clock::now();
-  primal::WeaveHistory history = primal::weave_history(r.woven, digest.get());
+  primal::WeaveHistory history = primal::weave_history(r.woven);
   // The pillow stage appends its hexes after the woven ones.
   if (r.pillow.applied || r.pillow.unpinch_blocks > 0)
     primal::append_hexes(history, r.mesh.complex.hexes.size(), "pillow");

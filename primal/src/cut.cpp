@@ -500,13 +500,20 @@ std::string glue_problem(const std::vector<stc::Hex>& hexes, std::size_t num_nod
   return v.valid ? std::string() : v.summary();
 }
 
-/// Appends a woven (and glued) ball to `result`: hexes, their shrink and rule records, the
-/// weave's statistics and its trace (hex ids shifted).
+/// Appends a woven (and glued) ball to `result`: hexes, their shrink, rule and node records
+/// (nodes in the ball weave's numbering), its shrink records (each ball numbers its shrinks
+/// from 0: a later ball's record replaces an earlier one's of the same index), the weave's
+/// statistics and its trace (hex ids shifted).
 void append_ball(weave::WeaveResult& result, const BallWeave& ball) {
   const std::size_t hex_offset = result.complex.hexes.size();
   for (const stc::Hex& h : ball.hexes) result.complex.hexes.push_back(h);
   for (std::int32_t sh : ball.woven.hex_shrink) result.hex_shrink.push_back(sh);
   for (const std::string& r : ball.woven.hex_rule) result.hex_rule.push_back(r);
+  result.hex_node.resize(hex_offset, NodeId::invalid());
+  result.hex_node.insert(result.hex_node.end(), ball.woven.hex_node.begin(),
+                         ball.woven.hex_node.end());
+  result.hex_node.resize(result.complex.hexes.size(), NodeId::invalid());
+  for (const weave::ShrinkRecord& r : ball.woven.shrinks) weave::file_shrink_record(result.shrinks, r);
   add_stats(result.stats, ball.woven.stats);
   result.recoveries.insert(result.recoveries.end(), ball.woven.recoveries.begin(),
                            ball.woven.recoveries.end());

@@ -89,19 +89,7 @@ void TraceDigest::add(const weave::TraceEvent& event) {
         r.length = c.length;
         r.depth = c.depth;
       }
-      // Shrink indices only grow; a repeated index (never seen) replaces the record.
-      if (!shrinks_.empty() && shrinks_.back().shrink >= r.shrink) {
-        const auto it =
-            std::lower_bound(shrinks_.begin(), shrinks_.end(), r.shrink,
-                             [](const ShrinkRecord& s, std::int32_t i) { return s.shrink < i; });
-        if (it != shrinks_.end() && it->shrink == r.shrink) {
-          *it = std::move(r);
-        } else {
-          shrinks_.insert(it, std::move(r));
-        }
-      } else {
-        shrinks_.push_back(std::move(r));
-      }
+      weave::file_shrink_record(shrinks_, std::move(r));
       break;
     }
     case Kind::ShrinkFailed:
@@ -122,26 +110,22 @@ void TraceDigest::add(const weave::TraceEvent& event) {
   }
 }
 
-WeaveHistory weave_history(const weave::WeaveResult& woven, const TraceDigest* digest) {
+WeaveHistory weave_history(const weave::WeaveResult& woven) {
   const std::size_t m = woven.complex.hexes.size();
-  if (woven.hex_shrink.size() != m || woven.hex_rule.size() != m) {
+  if (woven.hex_shrink.size() != m || woven.hex_rule.size() != m ||
+      (!woven.hex_node.empty() && woven.hex_node.size() != m)) {
     throw InvalidInput("weave history: the weave result lists the shrink of " +
-                       std::to_string(woven.hex_shrink.size()) + " and the rule of " +
-                       std::to_string(woven.hex_rule.size()) + " hexes for " + std::to_string(m) +
+                       std::to_string(woven.hex_shrink.size()) + ", the rule of " +
+                       std::to_string(woven.hex_rule.size()) + " and the node of " +
+                       std::to_string(woven.hex_node.size()) + " hexes for " + std::to_string(m) +
                        " hexes; pass the WeaveResult the hexes came from");
-  }
-  TraceDigest own;
-  if (digest == nullptr) {
-    for (const weave::TraceEvent& e : woven.trace) own.add(e);
-    digest = &own;
   }
   WeaveHistory h;
   h.hex_shrink = woven.hex_shrink;
   h.hex_rule = woven.hex_rule;
-  h.hex_node.assign(m, NodeId::invalid());
-  const std::vector<NodeId>& nodes = digest->hex_nodes();
-  for (std::size_t i = 0; i < std::min(m, nodes.size()); ++i) h.hex_node[i] = nodes[i];
-  h.shrinks = digest->shrinks();
+  h.hex_node = woven.hex_node;
+  h.hex_node.resize(m, NodeId::invalid());
+  h.shrinks = woven.shrinks;
   return h;
 }
 

@@ -290,7 +290,11 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
         r.complex.hexes.push_back(x);
         r.hex_rule.push_back(h < woven.hex_rule.size() ? woven.hex_rule[h] : "woven");
         r.hex_shrink.push_back(h < woven.hex_shrink.size() ? woven.hex_shrink[h] : -1);
+        // The woven hexes' rule nodes, in the weave's numbering (the attached ones have none).
+        r.hex_node.resize(r.complex.hexes.size() - 1, NodeId::invalid());
+        r.hex_node.push_back(h < woven.hex_node.size() ? woven.hex_node[h] : NodeId::invalid());
       }
+      r.shrinks = woven.shrinks;
       r.complex.num_nodes =
           pillow ? base + woven.complex.num_nodes : base + (woven.complex.num_nodes - m);
       r.stats = woven.stats;

@@ -126,11 +126,10 @@ TEST(MeshData, FaceNeighboursAreSymmetric) {
 }
 
 TEST(MeshData, WeaveHistoryOfARealWeave) {
+  // Without a trace: the history the weave records itself.
   MeshOptions options;
-  TraceDigest digest;
-  options.weave.on_trace = [&](const weave::TraceEvent& e) { digest.add(e); };
   const MeshResult r = mesh_file(file_of(test::box_surface(3, 3, 4), "box"), options);
-  const WeaveHistory h = weave_history(r.woven, &digest);
+  const WeaveHistory h = weave_history(r.woven);
   const std::size_t m = r.mesh.complex.hexes.size();
   ASSERT_EQ(m, 36U);
   ASSERT_FALSE(h.shrinks.empty());
@@ -145,18 +144,59 @@ TEST(MeshData, WeaveHistoryOfARealWeave) {
     EXPECT_EQ(cell(d, "depth").values[i], s->depth);
     EXPECT_TRUE(h.hex_node[i].is_valid());
   }
-  // The same history from the full trace kept in the result.
-  options.weave.on_trace = nullptr;
+  // The same history from a full trace of the same weave (what `stcweave view` reads).
   options.weave.trace = true;
   const MeshResult r2 = mesh_file(file_of(test::box_surface(3, 3, 4), "box"), options);
-  const WeaveHistory h2 = weave_history(r2.woven);
-  ASSERT_EQ(h2.shrinks.size(), h.shrinks.size());
+  TraceDigest digest;
+  for (const weave::TraceEvent& e : r2.woven.trace) digest.add(e);
+  ASSERT_EQ(digest.shrinks().size(), h.shrinks.size());
   for (std::size_t i = 0; i < h.shrinks.size(); ++i) {
-    EXPECT_EQ(h2.shrinks[i].shrink, h.shrinks[i].shrink);
-    EXPECT_EQ(h2.shrinks[i].loop, h.shrinks[i].loop);
-    EXPECT_EQ(h2.shrinks[i].depth, h.shrinks[i].depth);
+    EXPECT_EQ(digest.shrinks()[i].shrink, h.shrinks[i].shrink);
+    EXPECT_EQ(digest.shrinks()[i].loop, h.shrinks[i].loop);
+    EXPECT_EQ(digest.shrinks()[i].side, h.shrinks[i].side);
+    EXPECT_EQ(digest.shrinks()[i].length, h.shrinks[i].length);
+    EXPECT_EQ(digest.shrinks()[i].depth, h.shrinks[i].depth);
+    EXPECT_EQ(digest.shrinks()[i].decided_by, h.shrinks[i].decided_by);
+    EXPECT_EQ(digest.shrinks()[i].failed, h.shrinks[i].failed);
   }
-  EXPECT_EQ(h2.hex_node, h.hex_node);
+  EXPECT_EQ(digest.hex_nodes(), h.hex_node);
+  EXPECT_EQ(weave_history(r2.woven).hex_node, h.hex_node);
+}
+
+TEST(MeshData, WeaveHistoryOfABacktrackedWeaveKeepsOnlyWhatStayed) {
+  // Shrinks undone by backtracking give their index and hex ids to the next ones: the
+  // history recorded by the weave must agree with the digest of its trace, which replays
+  // every event in order (undone ones included).
+  MeshOptions options;
+  options.weave.rules = weave::RuleSet::Extended;
+  options.weave.trace = true;
+  options.interior.mode = InteriorMode::Weave;
+  // The extended weave of the triangle-split L-block undoes shrinks (2, measured).
+  const MeshResult r = mesh_file(
+      file_of(test::triangle_split_of(test::voxel_surface(test::lblock_cells())), "split L"),
+      options);
+  ASSERT_GT(r.woven.stats.rolled_back_shrinks, 0U) << "no shrink was undone: pick another shape";
+  TraceDigest digest;
+  for (const weave::TraceEvent& e : r.woven.trace) digest.add(e);
+  const WeaveHistory h = weave_history(r.woven);
+  ASSERT_EQ(h.hex_node.size(), r.woven.complex.hexes.size());
+  ASSERT_EQ(digest.shrinks().size(), h.shrinks.size());
+  for (std::size_t i = 0; i < h.shrinks.size(); ++i) {
+    EXPECT_EQ(digest.shrinks()[i].shrink, h.shrinks[i].shrink);
+    EXPECT_EQ(digest.shrinks()[i].loop, h.shrinks[i].loop);
+    EXPECT_EQ(digest.shrinks()[i].failed, h.shrinks[i].failed);
+  }
+  std::vector<NodeId> traced = digest.hex_nodes();
+  traced.resize(h.hex_node.size(), NodeId::invalid());
+  EXPECT_EQ(traced, h.hex_node);
+}
+
+TEST(MeshData, WeaveHistoryRefusesAResultWithTooFewNodes) {
+  MeshOptions options;
+  MeshResult r = mesh_file(file_of(test::box_surface(2, 2, 2), "box"), options);
+  ASSERT_EQ(weave_history(r.woven).hex_node.size(), 8U);
+  r.woven.hex_node.pop_back();
+  EXPECT_THROW((void)weave_history(r.woven), InvalidInput);
 }
 
 TEST(MeshData, RuleCodes) {

@@ -74,12 +74,10 @@ TEST(Base64, KnownVectors) {
 TEST(Page, DataMatchesTheWovenMesh) {
   if (!has_three_js()) GTEST_SKIP() << "built without three.js (libjs-three)";
   primal::MeshOptions options;
-  primal::TraceDigest digest;
-  options.weave.on_trace = [&](const weave::TraceEvent& e) { digest.add(e); };
   const primal::MeshResult r =
       primal::mesh_file(test::file_of(test::box_surface(4, 3, 5), "box"), options);
   const stc::HexStc stc = stc::build_hex_stc(r.mesh.complex);
-  const primal::WeaveHistory history = primal::weave_history(r.woven, &digest);
+  const primal::WeaveHistory history = primal::weave_history(r.woven);
   const primal::MeshData data = primal::hex_mesh_data(r.mesh, stc, &history);
   PageOptions page;
   page.title = "box </script><b>";

@@ -196,6 +196,7 @@ void WeaveState::roll_back(Checkpoint&& c) {
   woven.dual.resize(c.hexes);
   woven.hex_shrink.resize(c.hexes);
   woven.hex_rule.resize(c.hexes);
+  woven.hex_node.resize(c.hexes);
   woven.hexes_at.resize(c.nodes);
   front.roll_back(std::move(c.front));
   seam_work = std::move(c.seam_work);
@@ -272,6 +273,7 @@ HexId make_hex(WeaveState& state, WeaveContext& ctx, const stc::Hex& hex,
   woven.dual.emplace_back();
   woven.hex_shrink.push_back(ctx.shrink_index);
   woven.hex_rule.emplace_back(rule);
+  woven.hex_node.push_back(at_node);
   std::array<FaceIndex, 6> face_used{};
   face_used.fill(kNoFace);
   std::vector<FaceOwner> whiskers;

@@ -59,6 +59,49 @@ void TraceRecorder::on_shrink_failed(std::size_t step, std::int32_t shrink,
   record(std::move(e));
 }
 
+void file_shrink_record(std::vector<ShrinkRecord>& records, ShrinkRecord r) {
+  if (records.empty() || records.back().shrink < r.shrink) {
+    records.push_back(std::move(r));
+    return;
+  }
+  const auto it =
+      std::lower_bound(records.begin(), records.end(), r.shrink,
+                       [](const ShrinkRecord& s, std::int32_t i) { return s.shrink < i; });
+  if (it != records.end() && it->shrink == r.shrink) {
+    *it = std::move(r);
+  } else {
+    records.insert(it, std::move(r));
+  }
+}
+
+void ShrinkRecorder::on_selection(std::size_t /*step*/, std::int32_t shrink,
+                                  std::span<const TraceCandidate> candidates, std::size_t chosen,
+                                  const std::string& /*reason*/,
+                                  std::span<const std::string> /*filters*/,
+                                  const std::string& decided_by) {
+  ShrinkRecord r;
+  r.shrink = shrink;
+  r.decided_by = decided_by;
+  if (chosen < candidates.size()) {
+    const TraceCandidate& c = candidates[chosen];
+    r.loop = c.loop;
+    r.side = c.side;
+    r.length = c.length;
+    r.depth = c.depth;
+  }
+  file_shrink_record(records_, std::move(r));
+}
+
+void ShrinkRecorder::on_shrink_failed(std::size_t /*step*/, std::int32_t shrink,
+                                      const std::string& /*reason*/) {
+  for (auto it = records_.rbegin(); it != records_.rend(); ++it) {
+    if (it->shrink == shrink) {
+      it->failed = true;
+      break;
+    }
+  }
+}
+
 void ObserverList::on_selection(std::size_t step, std::int32_t shrink,
                                 std::span<const TraceCandidate> candidates, std::size_t chosen,
                                 const std::string& reason, std::span<const std::string> filters,

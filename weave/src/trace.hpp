@@ -29,6 +29,24 @@ class TraceRecorder final : public WeaveObserver {
   std::vector<TraceEvent> events_;
 };
 
+/// Keeps one `ShrinkRecord` per shrink (`WeaveResult::shrinks`): always on, it reads only the
+/// chosen candidate and nothing per rule.
+class ShrinkRecorder final : public WeaveObserver {
+ public:
+  void on_selection(std::size_t step, std::int32_t shrink,
+                    std::span<const TraceCandidate> candidates, std::size_t chosen,
+                    const std::string& reason, std::span<const std::string> filters,
+                    const std::string& decided_by) override;
+  void on_rule(std::size_t /*step*/, std::int32_t /*shrink*/, const char* /*rule*/,
+               NodeId /*node*/, std::span<const FaceOwner> /*faces*/, HexId /*hex*/) override {}
+  void on_shrink_failed(std::size_t step, std::int32_t shrink, const std::string& reason) override;
+  [[nodiscard]] bool reads_every_candidate() const override { return false; }
+  std::vector<ShrinkRecord> take() { return std::move(records_); }
+
+ private:
+  std::vector<ShrinkRecord> records_;
+};
+
 /// Hands every call to each observer in turn.
 class ObserverList final : public WeaveObserver {
  public:

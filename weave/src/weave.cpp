@@ -175,6 +175,7 @@ WeaveResult assemble(WeaveState&& state) {
   result.dual = std::move(state.woven.dual);
   result.hex_shrink = std::move(state.woven.hex_shrink);
   result.hex_rule = std::move(state.woven.hex_rule);
+  result.hex_node = std::move(state.woven.hex_node);
   result.stats = state.stats;
   return result;
 }
@@ -272,7 +273,9 @@ WeaveResult run_weave(WeaveState state, const WeaveOptions& options, std::size_t
                       const std::function<void(WeaveState&, WeaveContext&)>& prepare,
                       const BlockedHook& on_blocked) {
   TraceRecorder recorder(options);
+  ShrinkRecorder shrinks;
   ObserverList observers;
+  observers.add(&shrinks);
   if (options.trace || options.on_trace) observers.add(&recorder);
   if (options.observer != nullptr) observers.add(options.observer);
   WeaveObserver* observer = observers.empty()       ? nullptr
@@ -327,6 +330,7 @@ WeaveResult run_weave(WeaveState state, const WeaveOptions& options, std::size_t
 
   WeaveResult result = assemble(std::move(state));
   result.trace = recorder.take();
+  result.shrinks = shrinks.take();
   result.recoveries = std::move(recoveries);
   return result;
 }

@@ -60,6 +60,7 @@ std::size_t pillow_faces(WeaveState& state, WeaveContext& ctx,
     woven.dual.emplace_back();
     woven.hex_shrink.push_back(ctx.shrink_index);
     woven.hex_rule.emplace_back("pillow");
+    woven.hex_node.push_back(NodeId::invalid());
     std::array<FaceIndex, 6> used{};
     used.fill(kNoFace);
     Added a{id, -1, {}};

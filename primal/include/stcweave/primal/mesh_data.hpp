@@ -77,32 +77,24 @@ inline constexpr int kRuleOther = 9;
 /// The name of a rule code (`"other"` for `kRuleOther` and any unknown code).
 [[nodiscard]] std::string_view rule_name(int code);
 
-/// One loop shrink as the trace records it: the (loop, side) its selection chose.
-struct ShrinkRecord {
-  std::int32_t shrink = -1;  ///< the shrink index (`weave::TraceEvent::shrink`)
-  std::int32_t loop = -1;    ///< the loop, numbered in that selection's enumeration
-  int side = 0;              ///< 0 = side A, 1 = side B
-  std::size_t length = 0;    ///< strip passages of the loop
-  std::int32_t depth = 0;    ///< the candidate's depth (0 with `reliable`)
-  std::string decided_by;    ///< what decided the choice (`weave::TraceEvent::decided_by`)
-  bool failed = false;       ///< the shrink ended blocked (a `ShrinkFailed` event followed)
-};
+/// One loop shrink: the (loop, side) its selection chose (`weave::WeaveResult::shrinks`).
+using ShrinkRecord = weave::ShrinkRecord;
 
 /// What a weave tells about each hex it made and each loop shrink.
 struct WeaveHistory {
   std::vector<std::int32_t> hex_shrink;  ///< per hex, `weave::WeaveResult::hex_shrink`
   std::vector<std::string> hex_rule;     ///< per hex, `weave::WeaveResult::hex_rule`
-  /// Per hex, the node the rule was applied at (from the trace; invalid when not traced).
+  /// Per hex, the node the rule was applied at (invalid where no rule made it at a node).
   std::vector<NodeId> hex_node;
-  /// The shrinks seen in the trace, by increasing index (empty without a trace).
+  /// The shrinks, by increasing index.
   std::vector<ShrinkRecord> shrinks;
   /// The record of shrink `index`, or nullptr when the trace did not record it.
   [[nodiscard]] const ShrinkRecord* shrink(std::int32_t index) const;
 };
 
-/// Gathers the weave history from trace events as they happen (hand `add` to
-/// `weave::WeaveOptions::on_trace`): keeps one record per selection and the node of each
-/// rule that made a hex, nothing else (cheap on a 50k-hex weave).
+/// Gathers from trace events what `WeaveResult::shrinks` and `WeaveResult::hex_node` hold, for
+/// a caller that has the trace alone (`stcweave view` of a trace file): hand `add` every event
+/// in order. Keeps one record per selection and the node of each rule that made a hex.
 class TraceDigest {
  public:
   /// Takes one trace event into account. A rule event for a hex id seen before (a shrink
@@ -116,12 +108,10 @@ class TraceDigest {
   std::vector<NodeId> hex_nodes_;
 };
 
-/// The history of a weave: `woven`'s per-hex shrink and rule, with what `digest` (when
-/// given) or else `woven.trace` recorded of the shrinks.
+/// The history of a weave: `woven`'s per-hex shrink, rule and node, and its shrink records.
 /// \throw InvalidInput when `woven.hex_shrink` or `woven.hex_rule` does not have one entry
-///        per hex.
-[[nodiscard]] WeaveHistory weave_history(const weave::WeaveResult& woven,
-                                         const TraceDigest* digest = nullptr);
+///        per hex, or `woven.hex_node` is neither empty nor one entry per hex.
+[[nodiscard]] WeaveHistory weave_history(const weave::WeaveResult& woven);
 
 /// Extends `history` to `hexes` hexes with the hexes a later stage appended after the woven
 /// ones (the pillow stage appends its hexes, `MeshResult::mesh`): shrink -1, rule `rule`, no

@@ -66,6 +66,7 @@ struct WovenComplex {
   std::vector<std::array<DualLink, 6>> dual;  ///< per hex and local face, its neighbour
   std::vector<std::int32_t> hex_shrink;       ///< per hex, the shrink that made it
   std::vector<std::string> hex_rule;          ///< per hex, the rule that made it
+  std::vector<NodeId> hex_node;               ///< per hex, the node its rule was applied at
 };
 
 /// Everything a rule changes, owned by one value: a copy is a complete undo point.

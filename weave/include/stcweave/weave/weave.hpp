@@ -276,6 +276,22 @@ struct Recovery {
   std::string why;               ///< why the weave was blocked (the first refusals)
 };
 
+/// One loop shrink as the weave records it: the (loop, side) its selection chose.
+struct ShrinkRecord {
+  std::int32_t shrink = -1;  ///< the shrink index (`TraceEvent::shrink`)
+  std::int32_t loop = -1;    ///< the loop, numbered in that selection's enumeration
+  int side = 0;              ///< 0 = side A, 1 = side B
+  std::size_t length = 0;    ///< strip passages of the loop
+  std::int32_t depth = 0;    ///< the candidate's depth (0 with `reliable`)
+  std::string decided_by;    ///< what decided the choice (`TraceEvent::decided_by`)
+  bool failed = false;       ///< the shrink ended blocked (undone, or kept in part)
+};
+
+/// Files `r` into `records` (sorted by shrink index): a record with the same index is
+/// replaced (a shrink undone by backtracking gives its index to the next one; weaves merged
+/// one after the other number their shrinks from 0 each), any other is inserted in order.
+void file_shrink_record(std::vector<ShrinkRecord>& records, ShrinkRecord r);
+
 struct WeaveResult {
   /// The hexes. Input nodes keep their ids 0..num_input_nodes-1; interior nodes follow.
   stc::HexComplex complex;
@@ -286,6 +302,12 @@ struct WeaveResult {
   std::vector<std::int32_t> hex_shrink;
   /// For each hex, the rule that created it ("cross" or "blind-chord").
   std::vector<std::string> hex_rule;
+  /// For each hex, the front node its rule was applied at (front numbering, as the trace's
+  /// `node`; invalid for a hex no rule made at a node, e.g. a recovery pillow).
+  std::vector<NodeId> hex_node;
+  /// Every loop shrink kept, by increasing index: what its selection chose. Recorded with or
+  /// without a trace (a trace holds the same and more, at a cost per rule).
+  std::vector<ShrinkRecord> shrinks;
   WeaveStats stats;
   std::vector<TraceEvent> trace;
   /// The pillows of the block recovery, in order (empty when the weave never blocked).
