@@ -23,7 +23,7 @@ namespace {
 using namespace stcweave;
 
 void box_sizes(benchmark::internal::Benchmark* b) {
-  for (const int k : {4, 8, 16, 24, 32}) b->Arg(k);
+  for (const int k : {4, 8, 16, 24, 32, 48}) b->Arg(k);
   b->Unit(benchmark::kMillisecond);
 }
 
@@ -109,11 +109,14 @@ WovenBox woven_box(int k) {
 
 void recover_box(benchmark::State& state) {
   const WovenBox w = woven_box(static_cast<int>(state.range(0)));
+  primal::HarmonicReport report;
   for (auto _ : state) {
-    const primal::HexMesh mesh = primal::recover_hex_mesh(w.surface.points, w.woven);
+    const primal::HexMesh mesh = primal::recover_hex_mesh(w.surface.points, w.woven, &report);
     benchmark::DoNotOptimize(mesh.points.data());
   }
   state.counters["hexes"] = static_cast<double>(w.woven.complex.hexes.size());
+  state.counters["iterations"] = static_cast<double>(report.iterations);
+  state.counters["levels"] = static_cast<double>(report.levels);
 }
 BENCHMARK(recover_box)->Apply(box_sizes);
 

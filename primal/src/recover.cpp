@@ -10,141 +10,9 @@
 
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/stc/hex_complex.hpp"
+#include "laplacian_solve.hpp"
 
 namespace stcweave::primal {
-
-namespace {
-
-/// The graph Laplacian of the hex edges restricted to the free nodes, stored as neighbour
-/// lists only: row i is degree[i] on the diagonal and -1 for each free neighbour. Every
-/// off-diagonal entry is -1, so no value array is needed, which halves what a product reads.
-struct FreeLaplacian {
-  std::vector<double> degree;           ///< edge count of free node i (fixed neighbours too)
-  std::vector<std::size_t> row_start;   ///< CSR offsets into `neighbour`, size free + 1
-  std::vector<std::int32_t> neighbour;  ///< free neighbours, as free indices, ascending
-};
-
-using Row3 = std::array<double, 3>;
-
-/// y = L x for three right-hand sides at once (x and y hold one row of three per free node);
-/// returns the column-wise dot products x . y, which conjugate gradients needs next.
-Row3 multiply(const FreeLaplacian& l, const std::vector<Row3>& x, std::vector<Row3>& y) {
-  const std::size_t n = l.degree.size();
-  Row3 xy{0.0, 0.0, 0.0};
-  for (std::size_t i = 0; i < n; ++i) {
-    Row3 sum{0.0, 0.0, 0.0};
-    for (std::size_t e = l.row_start[i]; e < l.row_start[i + 1]; ++e) {
-      const Row3& xj = x[static_cast<std::size_t>(l.neighbour[e])];
-      sum[0] += xj[0];
-      sum[1] += xj[1];
-      sum[2] += xj[2];
-    }
-    const double d = l.degree[i];
-    const Row3& xi = x[i];
-    Row3& yi = y[i];
-    for (std::size_t c = 0; c < 3; ++c) {
-      yi[c] = d * xi[c] - sum[c];
-      xy[c] += xi[c] * yi[c];
-    }
-  }
-  return xy;
-}
-
-struct SolveOutcome {
-  std::array<std::size_t, 3> iterations{0, 0, 0};
-  Row3 relative_residual{0.0, 0.0, 0.0};
-  std::array<bool, 3> converged{false, false, false};
-};
-
-/// Jacobi-preconditioned conjugate gradients on the three coordinate systems L x_c = b_c, run
-/// side by side so that each product reads the matrix once for all three. Each column keeps
-/// its own step lengths and stops on its own once its residual is below `tolerance` times its
-/// right-hand side; a column that has stopped is left exactly as it is (zero step, direction
-/// kept), so the result is that of three separate solves. The sums run sequentially in a
-/// fixed order: the result is deterministic.
-SolveOutcome conjugate_gradients(const FreeLaplacian& l, const std::vector<Row3>& b,
-                                 std::vector<Row3>& x, double tolerance,
-                                 std::size_t max_iterations) {
-  const std::size_t n = l.degree.size();
-  SolveOutcome out;
-  std::vector<double> inv_degree(n);
-  for (std::size_t i = 0; i < n; ++i) inv_degree[i] = 1.0 / l.degree[i];
-  std::vector<Row3> r(n);
-  std::vector<Row3> p(n);
-  std::vector<Row3> q(n);
-  multiply(l, x, q);
-  Row3 b_norm2{0.0, 0.0, 0.0};
-  Row3 r_norm2{0.0, 0.0, 0.0};
-  Row3 rz{0.0, 0.0, 0.0};
-  for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t c = 0; c < 3; ++c) {
-      r[i][c] = b[i][c] - q[i][c];
-      p[i][c] = r[i][c] * inv_degree[i];
-      b_norm2[c] += b[i][c] * b[i][c];
-      r_norm2[c] += r[i][c] * r[i][c];
-      rz[c] += r[i][c] * p[i][c];
-    }
-  }
-  Row3 threshold{};
-  std::array<bool, 3> active{};
-  for (std::size_t c = 0; c < 3; ++c) {
-    if (b_norm2[c] == 0.0) {
-      // A zero right-hand side has the zero solution.
-      for (std::size_t i = 0; i < n; ++i) x[i][c] = 0.0;
-      r_norm2[c] = 0.0;
-      out.converged[c] = true;
-      continue;
-    }
-    threshold[c] = std::max(tolerance * tolerance * b_norm2[c], std::numeric_limits<double>::min());
-    out.converged[c] = r_norm2[c] < threshold[c];
-    active[c] = !out.converged[c];
-  }
-  std::size_t it = 0;
-  while ((active[0] || active[1] || active[2]) && it < max_iterations) {
-    const Row3 pq = multiply(l, p, q);
-    Row3 alpha{0.0, 0.0, 0.0};
-    for (std::size_t c = 0; c < 3; ++c) alpha[c] = active[c] ? rz[c] / pq[c] : 0.0;
-    // x += alpha p, r -= alpha q; with z = r / degree, the new r . r and r . z.
-    Row3 rr{0.0, 0.0, 0.0};
-    Row3 rz_new{0.0, 0.0, 0.0};
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t c = 0; c < 3; ++c) {
-        x[i][c] += alpha[c] * p[i][c];
-        r[i][c] -= alpha[c] * q[i][c];
-        rr[c] += r[i][c] * r[i][c];
-        rz_new[c] += r[i][c] * r[i][c] * inv_degree[i];
-      }
-    }
-    ++it;
-    // p = z + beta p for the columns still running; (0, 1) keeps a stopped column's p.
-    Row3 z_weight{0.0, 0.0, 0.0};
-    Row3 beta{1.0, 1.0, 1.0};
-    for (std::size_t c = 0; c < 3; ++c) {
-      if (!active[c]) continue;
-      r_norm2[c] = rr[c];
-      out.iterations[c] = it;
-      if (rr[c] < threshold[c]) {
-        active[c] = false;
-        out.converged[c] = true;
-        continue;
-      }
-      z_weight[c] = 1.0;
-      beta[c] = rz_new[c] / rz[c];
-      rz[c] = rz_new[c];
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t c = 0; c < 3; ++c) {
-        p[i][c] = z_weight[c] * r[i][c] * inv_degree[i] + beta[c] * p[i][c];
-      }
-    }
-  }
-  for (std::size_t c = 0; c < 3; ++c) {
-    out.relative_residual[c] = b_norm2[c] == 0.0 ? 0.0 : std::sqrt(r_norm2[c] / b_norm2[c]);
-  }
-  return out;
-}
-
-}  // namespace
 
 HarmonicReport harmonic_positions(HexMesh& mesh, std::size_t num_fixed) {
   HarmonicReport report;
@@ -202,7 +70,8 @@ HarmonicReport harmonic_positions(HexMesh& mesh, std::size_t num_fixed) {
       mesh.points.topRows(static_cast<Eigen::Index>(num_fixed)).colwise().mean();
   std::vector<Row3> x(free, Row3{centre(0), centre(1), centre(2)});
   const std::size_t max_iterations = std::max<std::size_t>(1000, 20 * free);
-  const SolveOutcome out = conjugate_gradients(l, rhs, x, 1e-10, max_iterations);
+  const SolveOutcome out = solve_laplacian(l, rhs, x, 1e-10, max_iterations);
+  report.levels = out.levels;
   for (std::size_t c = 0; c < 3; ++c) {
     if (!out.converged[c]) {
       throw SolverError("harmonic placement did not converge (" +

@@ -262,6 +262,27 @@ TEST(BlockRecovery, TheTraceHoldsOnlyTheKeptTrial) {
     for (const TraceEvent& e : b.trace) pillow_events += e.rule == "pillow" ? 1 : 0;
     EXPECT_EQ(pillow_events, b.recoveries.size()) << "one pillow event per kept recovery";
     EXPECT_GT(rule_events, 0U);
+    // The history the weave records itself (WeaveResult::hex_node, ::shrinks) is the same with
+    // and without a trace, and says what the kept path's events say: per hex, the node of the
+    // last rule event that made it (a pillow batch's on its last hex), none where no event did.
+    EXPECT_EQ(a.hex_node, b.hex_node) << to_string(rules);
+    ASSERT_EQ(a.shrinks.size(), b.shrinks.size()) << to_string(rules);
+    for (std::size_t i = 0; i < a.shrinks.size(); ++i) {
+      EXPECT_EQ(a.shrinks[i].shrink, b.shrinks[i].shrink);
+      EXPECT_EQ(a.shrinks[i].loop, b.shrinks[i].loop);
+      EXPECT_EQ(a.shrinks[i].failed, b.shrinks[i].failed);
+    }
+    std::vector<NodeId> from_trace(b.complex.hexes.size(), NodeId::invalid());
+    for (const TraceEvent& e : b.trace) {
+      if (e.kind == TraceEvent::Kind::Rule && e.hex.is_valid())
+        from_trace.at(e.hex.index()) = e.node;
+    }
+    ASSERT_EQ(b.hex_node.size(), b.complex.hexes.size());
+    EXPECT_EQ(b.hex_node, from_trace) << to_string(rules);
+    std::size_t selections = 0;
+    for (const TraceEvent& e : b.trace) selections += e.kind == TraceEvent::Kind::Selection ? 1 : 0;
+    EXPECT_GT(b.shrinks.size(), 0U);
+    EXPECT_LE(b.shrinks.size(), selections);
   }
 }
 

@@ -116,8 +116,11 @@ std::size_t pillow_faces(WeaveState& state, WeaveContext& ctx,
         a.carried.depth[lf], a.carried.side_angle[lf]);
     state.push_nodes_of(g);
   }
-  ctx.after_rule(state, "pillow", woven.hexes[added.front().id.index()][4], whiskers,
-                 added.back().id);
+  // The batch is reported as one rule at its first copy node, on its last hex (as the trace's
+  // rule event says).
+  const NodeId reported = woven.hexes[added.front().id.index()][4];
+  woven.hex_node[added.back().id.index()] = reported;
+  ctx.after_rule(state, "pillow", reported, whiskers, added.back().id);
   return added.size();
 }
 

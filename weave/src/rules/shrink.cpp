@@ -453,7 +453,6 @@ std::optional<std::string> shrink(WeaveState& state, WeaveContext& ctx, const St
   } detach{front};
   const bool check = ctx.options.check;
   std::vector<Transversal> check_edges;  // with `check`: the strip's, for `retrace`
-  bool walk_everything = false;          // the next walk skips no known refusal
   for (;;) {
     seam_fixpoint(state, ctx);
     Strip expected;  // with `check`: what `retrace` gives
@@ -477,57 +476,56 @@ std::optional<std::string> shrink(WeaveState& state, WeaveContext& ctx, const St
       check_edges = transversals(front, expected, stc::LoopSide::Left);
     }
     // The side nodes by fewest front faces (ties: loop order), each once, until a rule
-    // applies: the fewest-sided first, whose rule usually applies.
-    index.begin_walk();
+    // applies: the fewest-sided first, whose rule usually applies. Refusals are remembered
+    // while the geometric preconditions are in force (a relaxed step evaluates every node); a
+    // walk that skipped one and found nothing is walked again at once, on the same front,
+    // without skipping, so that the refusal message names every node as before.
     std::string reasons;
     bool applied = false;
-    // Refusals are remembered while the geometric preconditions are in force (a relaxed step
-    // evaluates every node); a walk that skipped one and found nothing is walked again
-    // without skipping, so that the refusal message names every node as before.
-    const bool skip_known = !ctx.relax_geometry && !walk_everything;
-    bool skipped = false;
-    walk_everything = false;
-    for (NodeId v = index.next_node(); v.is_valid(); v = index.next_node()) {
-      std::string why;
-      const std::size_t k = front.valence(v);
-      if (k >= 3 && skip_known && index.known_refused(v)) {
-        skipped = true;
-        // With `check`, the rule runs all the same: it must refuse again.
-        if (check && (k == 3 ? cross(state, ctx, v)
-                             : blind_chord(state, ctx, v, index.steps_of(v), index.faces()))
-                         .applied) {
-          remembered_refusal_applied(k, v);
+    for (bool skip_known = !ctx.relax_geometry;; skip_known = false) {
+      index.begin_walk();
+      reasons.clear();
+      bool skipped = false;
+      for (NodeId v = index.next_node(); v.is_valid(); v = index.next_node()) {
+        std::string why;
+        const std::size_t k = front.valence(v);
+        if (k >= 3 && skip_known && index.known_refused(v)) {
+          skipped = true;
+          // With `check`, the rule runs all the same: it must refuse again.
+          if (check && (k == 3 ? cross(state, ctx, v)
+                               : blind_chord(state, ctx, v, index.steps_of(v), index.faces()))
+                           .applied) {
+            remembered_refusal_applied(k, v);
+          }
+          continue;
         }
-        continue;
-      }
-      if (k == 2) {
-        why = "valence 2 but its seam is blocked";
-        const RuleResult r = seam(state, ctx, v);
-        if (!r) {
-          why += " (" + r.why + ")";
+        if (k == 2) {
+          why = "valence 2 but its seam is blocked";
+          const RuleResult r = seam(state, ctx, v);
+          if (!r) {
+            why += " (" + r.why + ")";
+          } else {
+            applied = true;
+          }
+        } else if (k == 3) {
+          const RuleResult r = cross(state, ctx, v);
+          applied = r.applied;
+          if (!applied) why = "cross refused: " + r.why;
         } else {
-          applied = true;
+          // Tried at the strip steps holding v on the shrinking side, in loop order.
+          const RuleResult r = blind_chord(state, ctx, v, index.steps_of(v), index.faces());
+          applied = r.applied;
+          if (!applied) why = "blind chord refused: " + r.why;
         }
-      } else if (k == 3) {
-        const RuleResult r = cross(state, ctx, v);
-        applied = r.applied;
-        if (!applied) why = "cross refused: " + r.why;
-      } else {
-        // Tried at the strip steps holding v on the shrinking side, in loop order.
-        const RuleResult r = blind_chord(state, ctx, v, index.steps_of(v), index.faces());
-        applied = r.applied;
-        if (!applied) why = "blind chord refused: " + r.why;
+        if (applied) break;
+        // A rule refuses before it moves anything, so the walk goes on over the same front.
+        if (!changes.faces.empty() || !changes.nodes.empty())
+          throw InternalError("weave: a refused rule changed the front (" + why + ")");
+        if (k >= 3 && !ctx.relax_geometry) index.note_refused(v);
+        if (reasons.size() < 600)
+          reasons += (reasons.empty() ? "" : "; ") + v.str() + ": " + why;
       }
-      if (applied) break;
-      // A rule refuses before it moves anything, so the walk goes on over the same front.
-      if (!changes.faces.empty() || !changes.nodes.empty())
-        throw InternalError("weave: a refused rule changed the front (" + why + ")");
-      if (k >= 3 && !ctx.relax_geometry) index.note_refused(v);
-      if (reasons.size() < 600) reasons += (reasons.empty() ? "" : "; ") + v.str() + ": " + why;
-    }
-    if (!applied && skipped) {
-      walk_everything = true;
-      continue;
+      if (applied || !skipped) break;
     }
     if (!applied && ctx.extended() && ctx.parameters().flat_cross_precondition &&
         !ctx.relax_geometry) {

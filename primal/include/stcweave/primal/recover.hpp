@@ -14,6 +14,7 @@ struct HarmonicReport {
   std::size_t free_nodes = 0;
   std::size_t iterations = 0;  ///< conjugate-gradient iterations
   double residual = 0.0;       ///< relative residual reached
+  std::size_t levels = 1;      ///< multigrid levels of the preconditioner (1: Jacobi)
 };
 
 /// Gives nodes `num_fixed ..` of `mesh` the harmonic position of the hex-edge graph with nodes

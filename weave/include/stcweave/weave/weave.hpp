@@ -303,7 +303,8 @@ struct WeaveResult {
   /// For each hex, the rule that created it ("cross" or "blind-chord").
   std::vector<std::string> hex_rule;
   /// For each hex, the front node its rule was applied at (front numbering, as the trace's
-  /// `node`; invalid for a hex no rule made at a node, e.g. a recovery pillow).
+  /// `node`). A recovery pillow is one rule for several hexes: its last hex carries the node
+  /// it was reported at, the others an invalid id.
   std::vector<NodeId> hex_node;
   /// Every loop shrink kept, by increasing index: what its selection chose. Recorded with or
   /// without a trace (a trace holds the same and more, at a cost per rule).
