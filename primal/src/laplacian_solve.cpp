@@ -16,10 +16,8 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <string>
 #include <utility>
 
-#include "stcweave/stc/errors.hpp"
 
 namespace stcweave::primal {
 
@@ -170,7 +168,9 @@ LevelMatrix coarsen(const LevelMatrix& a, const std::vector<std::int32_t>& agg,
   return c;
 }
 
-/// The dense Cholesky factor (lower, row-major) of a small level matrix.
+/// The dense Cholesky factor (lower, row-major) of a small level matrix; empty when a pivot is
+/// not clearly positive (a group of free nodes with no fixed neighbour makes the matrix
+/// singular: the caller then preconditions by Jacobi, which converges there all the same).
 std::vector<double> dense_cholesky(const LevelMatrix& a) {
   const std::size_t n = a.size();
   std::vector<double> l(n * n, 0.0);
@@ -182,11 +182,7 @@ std::vector<double> dense_cholesky(const LevelMatrix& a) {
   for (std::size_t j = 0; j < n; ++j) {
     double d = l[j * n + j];
     for (std::size_t k = 0; k < j; ++k) d -= l[j * n + k] * l[j * n + k];
-    if (!(d > 0.0)) {
-      throw SolverError("harmonic placement: the coarsest multigrid level is not positive "
-                        "definite (pivot " +
-                        std::to_string(d) + " at row " + std::to_string(j) + ")");
-    }
+    if (!(d > 1e-12 * a.diag[j])) return {};
     const double ljj = std::sqrt(d);
     l[j * n + j] = ljj;
     for (std::size_t i = j + 1; i < n; ++i) {
@@ -214,9 +210,8 @@ class Multigrid {
       top.aggregate = std::move(agg);
       levels_.push_back(Level{std::move(next), {}, {}, {}, {}});
     }
-    coarsest_factor_ = levels_.back().a.size() <= options.coarsest
-                           ? dense_cholesky(levels_.back().a)
-                           : std::vector<double>{};
+    if (levels_.back().a.size() <= options.coarsest && levels_.back().a.size() > 0)
+      coarsest_factor_ = dense_cholesky(levels_.back().a);
     for (Level& level : levels_) {
       const std::size_t n = level.a.size();
       level.r.assign(n, Row3{});
@@ -225,7 +220,8 @@ class Multigrid {
     }
   }
 
-  /// Whether the hierarchy ends in a level small enough to factor (else: use Jacobi).
+  /// Whether the hierarchy ends in a level small enough to factor, and factored (else: use
+  /// Jacobi).
   [[nodiscard]] bool usable() const { return !coarsest_factor_.empty(); }
   [[nodiscard]] std::size_t levels() const { return levels_.size(); }
 
@@ -387,8 +383,15 @@ SolveOutcome solve_laplacian(const FreeLaplacian& l, const std::vector<Row3>& b,
       beta[c] = rz_new[c] / rz[c];
       rz[c] = rz_new[c];
     }
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t c = 0; c < 3; ++c) p[i][c] = z_weight[c] * z[i][c] + beta[c] * p[i][c];
+    if (mg) {
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t c = 0; c < 3; ++c) p[i][c] = z_weight[c] * z[i][c] + beta[c] * p[i][c];
+    } else {  // the Jacobi solve's own expression (the same rounding with contracted FMAs)
+      for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t c = 0; c < 3; ++c)
+          p[i][c] = z_weight[c] * r[i][c] * inv_degree[i] + beta[c] * p[i][c];
+      }
+    }
   }
   for (std::size_t c = 0; c < 3; ++c) {
     out.relative_residual[c] = b_norm2[c] == 0.0 ? 0.0 : std::sqrt(r_norm2[c] / b_norm2[c]);

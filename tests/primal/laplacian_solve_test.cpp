@@ -165,5 +165,53 @@ TEST(LaplacianSolve, MultigridAgreesWithJacobiOnAnIrregularGraphAndRepeats) {
   EXPECT_LT(worst, 1e-7 * scale);
 }
 
+TEST(LaplacianSolve, AFloatingGroupOfFreeNodesFallsBackToJacobiInsteadOfFailing) {
+  // A grid plus a 3 x 3 x 3 block of free nodes tied to no fixed node: L is singular on the
+  // block (its coarse levels too), which a Cholesky factor cannot take. The solve must still
+  // converge, leave the block where it started (zero right-hand side there) and solve the
+  // grid; before the fallback it threw.
+  const Grid g = grid(16);
+  const std::size_t base = g.b.size();
+  std::set<std::pair<std::int32_t, std::int32_t>> edges;
+  std::vector<int> ties(base + 27, 0);
+  for (std::size_t i = 0; i < base; ++i) {
+    double fixed_part = g.l.degree[i];
+    for (std::size_t e = g.l.row_start[i]; e < g.l.row_start[i + 1]; ++e) {
+      if (static_cast<std::int32_t>(i) < g.l.neighbour[e])
+        edges.emplace(static_cast<std::int32_t>(i), g.l.neighbour[e]);
+      fixed_part -= 1.0;
+    }
+    ties[i] = static_cast<int>(fixed_part);
+  }
+  const auto block = [base](int i, int j, int k) {
+    return static_cast<std::int32_t>(base) + i + 3 * (j + 3 * k);
+  };
+  for (int k = 0; k < 3; ++k) {
+    for (int j = 0; j < 3; ++j) {
+      for (int i = 0; i < 3; ++i) {
+        if (i < 2) edges.emplace(block(i, j, k), block(i + 1, j, k));
+        if (j < 2) edges.emplace(block(i, j, k), block(i, j + 1, k));
+        if (k < 2) edges.emplace(block(i, j, k), block(i, j, k + 1));
+      }
+    }
+  }
+  const FreeLaplacian l = laplacian_of(base + 27, edges, ties);
+  std::vector<Row3> b = g.b;
+  b.resize(base + 27, Row3{0.0, 0.0, 0.0});
+  std::vector<Row3> x(base + 27, Row3{0.5, 0.5, 0.5});
+  LaplacianSolveOptions o = multigrid();
+  o.coarsest = 40;
+  SolveOutcome out;
+  ASSERT_NO_THROW(out = solve_laplacian(l, b, x, 1e-10, 10000, o));
+  EXPECT_EQ(out.levels, 1U);  // Jacobi
+  for (std::size_t c = 0; c < 3; ++c) EXPECT_TRUE(out.converged[c]) << c;
+  for (std::size_t i = base; i < base + 27; ++i)
+    for (std::size_t c = 0; c < 3; ++c) EXPECT_EQ(x[i][c], 0.5) << "block node " << i;
+  double worst = 0.0;
+  for (std::size_t i = 0; i < base; ++i)
+    for (std::size_t c = 0; c < 3; ++c) worst = std::max(worst, std::abs(x[i][c] - g.exact[i][c]));
+  EXPECT_LT(worst, 1e-6);
+}
+
 }  // namespace
 }  // namespace stcweave::primal
