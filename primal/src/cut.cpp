@@ -513,7 +513,8 @@ void append_ball(weave::WeaveResult& result, const BallWeave& ball) {
   result.hex_node.insert(result.hex_node.end(), ball.woven.hex_node.begin(),
                          ball.woven.hex_node.end());
   result.hex_node.resize(result.complex.hexes.size(), NodeId::invalid());
-  for (const weave::ShrinkRecord& r : ball.woven.shrinks) weave::file_shrink_record(result.shrinks, r);
+  for (const weave::ShrinkRecord& r : ball.woven.shrinks)
+    weave::file_shrink_record(result.shrinks, r);
   add_stats(result.stats, ball.woven.stats);
   result.recoveries.insert(result.recoveries.end(), ball.woven.recoveries.begin(),
                            ball.woven.recoveries.end());

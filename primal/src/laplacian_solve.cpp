@@ -18,7 +18,6 @@
 #include <optional>
 #include <utility>
 
-
 namespace stcweave::primal {
 
 namespace {
@@ -120,8 +119,7 @@ std::pair<std::vector<std::int32_t>, std::size_t> aggregate(const LevelMatrix& a
 }
 
 /// P^T A P for the grouping `agg` into `count` aggregates (rows' columns ascending).
-LevelMatrix coarsen(const LevelMatrix& a, const std::vector<std::int32_t>& agg,
-                    std::size_t count) {
+LevelMatrix coarsen(const LevelMatrix& a, const std::vector<std::int32_t>& agg, std::size_t count) {
   const std::size_t n = a.size();
   // The members of each aggregate, by a counting sort.
   std::vector<std::size_t> member_start(count + 1, 0);
@@ -199,8 +197,7 @@ std::vector<double> dense_cholesky(const LevelMatrix& a) {
 /// The V-cycle preconditioner.
 class Multigrid {
  public:
-  Multigrid(LevelMatrix fine, const LaplacianSolveOptions& options)
-      : scale_(options.coarse_scale) {
+  Multigrid(LevelMatrix fine, const LaplacianSolveOptions& options) : scale_(options.coarse_scale) {
     levels_.push_back(Level{std::move(fine), {}, {}, {}, {}});
     while (levels_.back().a.size() > options.coarsest) {
       Level& top = levels_.back();

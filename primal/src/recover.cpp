@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "laplacian_solve.hpp"
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/stc/hex_complex.hpp"
-#include "laplacian_solve.hpp"
 
 namespace stcweave::primal {
 

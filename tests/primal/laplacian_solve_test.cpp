@@ -18,7 +18,8 @@ namespace {
 
 /// The Laplacian of an edge list over `free` free nodes; `fixed_ties[i]` edges of node i go to
 /// fixed nodes (they count in its degree only).
-FreeLaplacian laplacian_of(std::size_t free, const std::set<std::pair<std::int32_t, std::int32_t>>& edges,
+FreeLaplacian laplacian_of(std::size_t free,
+                           const std::set<std::pair<std::int32_t, std::int32_t>>& edges,
                            const std::vector<int>& fixed_ties) {
   FreeLaplacian l;
   l.degree.assign(free, 0.0);
@@ -49,14 +50,17 @@ struct Grid {
 
 Grid grid(int k) {
   const int m = k - 1;  // interior nodes per axis
-  const auto id = [m](int i, int j, int l) { return static_cast<std::int32_t>((i - 1) + m * ((j - 1) + m * (l - 1))); };
+  const auto id = [m](int i, int j, int l) {
+    return static_cast<std::int32_t>((i - 1) + m * ((j - 1) + m * (l - 1)));
+  };
   const auto f = [](int i, int j, int l) {
     return Row3{1.0 * i + 0.5 * j, 2.0 * j - 0.25 * l, 0.75 * i + 1.5 * l};
   };
   const auto free_node = [k](int i, int j, int l) {
     return i > 0 && i < k && j > 0 && j < k && l > 0 && l < k;
   };
-  const auto n = static_cast<std::size_t>(m) * static_cast<std::size_t>(m) * static_cast<std::size_t>(m);
+  const auto n =
+      static_cast<std::size_t>(m) * static_cast<std::size_t>(m) * static_cast<std::size_t>(m);
   std::set<std::pair<std::int32_t, std::int32_t>> edges;
   std::vector<int> ties(n, 0);
   Grid g;
@@ -72,7 +76,8 @@ Grid grid(int k) {
         for (const auto& q : nb) {
           if (free_node(q[0], q[1], q[2])) {
             const std::int32_t other = id(q[0], q[1], q[2]);
-            if (static_cast<std::int32_t>(me) < other) edges.emplace(static_cast<std::int32_t>(me), other);
+            if (static_cast<std::int32_t>(me) < other)
+              edges.emplace(static_cast<std::int32_t>(me), other);
           } else {
             ++ties[me];
             const Row3 v = f(q[0], q[1], q[2]);

@@ -37,8 +37,8 @@ class ShrinkRecorder final : public WeaveObserver {
                     std::span<const TraceCandidate> candidates, std::size_t chosen,
                     const std::string& reason, std::span<const std::string> filters,
                     const std::string& decided_by) override;
-  void on_rule(std::size_t /*step*/, std::int32_t /*shrink*/, const char* /*rule*/,
-               NodeId /*node*/, std::span<const FaceOwner> /*faces*/, HexId /*hex*/) override {}
+  void on_rule(std::size_t /*step*/, std::int32_t /*shrink*/, const char* /*rule*/, NodeId /*node*/,
+               std::span<const FaceOwner> /*faces*/, HexId /*hex*/) override {}
   void on_shrink_failed(std::size_t step, std::int32_t shrink, const std::string& reason) override;
   [[nodiscard]] bool reads_every_candidate() const override { return false; }
   std::vector<ShrinkRecord> take() { return std::move(records_); }

@@ -522,8 +522,7 @@ std::optional<std::string> shrink(WeaveState& state, WeaveContext& ctx, const St
         if (!changes.faces.empty() || !changes.nodes.empty())
           throw InternalError("weave: a refused rule changed the front (" + why + ")");
         if (k >= 3 && !ctx.relax_geometry) index.note_refused(v);
-        if (reasons.size() < 600)
-          reasons += (reasons.empty() ? "" : "; ") + v.str() + ": " + why;
+        if (reasons.size() < 600) reasons += (reasons.empty() ? "" : "; ") + v.str() + ": " + why;
       }
       if (applied || !skipped) break;
     }
