@@ -93,12 +93,7 @@ void TraceDigest::add(const weave::TraceEvent& event) {
       break;
     }
     case Kind::ShrinkFailed:
-      for (auto it = shrinks_.rbegin(); it != shrinks_.rend(); ++it) {
-        if (it->shrink == event.shrink) {
-          it->failed = true;
-          break;
-        }
-      }
+      weave::mark_shrink_failed(shrinks_, event.shrink);
       break;
     case Kind::Rule:
       if (event.hex.is_valid()) {

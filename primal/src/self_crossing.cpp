@@ -284,14 +284,15 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
           r.hex_shrink.push_back(-1);
         }
       }
+      // Rule nodes: none for the attached and pillow hexes, the weave's (in its numbering) for
+      // the woven ones.
+      r.hex_node.assign(r.complex.hexes.size(), NodeId::invalid());
       for (std::size_t h = 0; h < woven.complex.hexes.size(); ++h) {
         stc::Hex x{};
         for (std::size_t i = 0; i < 8; ++i) x[i] = woven_node(woven.complex.hexes[h][i]);
         r.complex.hexes.push_back(x);
         r.hex_rule.push_back(h < woven.hex_rule.size() ? woven.hex_rule[h] : "woven");
         r.hex_shrink.push_back(h < woven.hex_shrink.size() ? woven.hex_shrink[h] : -1);
-        // The woven hexes' rule nodes, in the weave's numbering (the attached ones have none).
-        r.hex_node.resize(r.complex.hexes.size() - 1, NodeId::invalid());
         r.hex_node.push_back(h < woven.hex_node.size() ? woven.hex_node[h] : NodeId::invalid());
       }
       r.shrinks = woven.shrinks;

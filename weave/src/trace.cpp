@@ -74,6 +74,15 @@ void file_shrink_record(std::vector<ShrinkRecord>& records, ShrinkRecord r) {
   }
 }
 
+void mark_shrink_failed(std::vector<ShrinkRecord>& records, std::int32_t shrink) {
+  for (auto it = records.rbegin(); it != records.rend(); ++it) {
+    if (it->shrink == shrink) {
+      it->failed = true;
+      return;
+    }
+  }
+}
+
 void ShrinkRecorder::on_selection(std::size_t /*step*/, std::int32_t shrink,
                                   std::span<const TraceCandidate> candidates, std::size_t chosen,
                                   const std::string& /*reason*/,
@@ -94,12 +103,7 @@ void ShrinkRecorder::on_selection(std::size_t /*step*/, std::int32_t shrink,
 
 void ShrinkRecorder::on_shrink_failed(std::size_t /*step*/, std::int32_t shrink,
                                       const std::string& /*reason*/) {
-  for (auto it = records_.rbegin(); it != records_.rend(); ++it) {
-    if (it->shrink == shrink) {
-      it->failed = true;
-      break;
-    }
-  }
+  mark_shrink_failed(records_, shrink);
 }
 
 void ObserverList::on_selection(std::size_t step, std::int32_t shrink,

@@ -110,9 +110,9 @@ class StripIndex {
       }
       if (!repair(*start, is_removed)) build(trace_strip(front_, face_of(*start), start->entry));
     }
-    for (NodeId v : log.nodes) forget_refusal(v);
-    // Re-file the side nodes whose valence changed.
+    // Forget their refusals and re-file the side nodes whose valence changed.
     for (NodeId v : log.nodes) {
+      forget_refusal(v);
       if (v.index() >= front_.num_nodes()) continue;
       const std::size_t k = front_.valence(v);
       for (FaceIndex f : front_.faces_at(v)) {
@@ -482,6 +482,12 @@ std::optional<std::string> shrink(WeaveState& state, WeaveContext& ctx, const St
     // without skipping, so that the refusal message names every node as before.
     std::string reasons;
     bool applied = false;
+    // The cross at a valence-3 node, the blind chord at a higher one.
+    const auto collapse = [&](NodeId v, std::size_t k) {
+      // Tried at the strip steps holding v on the shrinking side, in loop order.
+      return k == 3 ? cross(state, ctx, v)
+                    : blind_chord(state, ctx, v, index.steps_of(v), index.faces());
+    };
     for (bool skip_known = !ctx.relax_geometry;; skip_known = false) {
       index.begin_walk();
       reasons.clear();
@@ -492,11 +498,7 @@ std::optional<std::string> shrink(WeaveState& state, WeaveContext& ctx, const St
         if (k >= 3 && skip_known && index.known_refused(v)) {
           skipped = true;
           // With `check`, the rule runs all the same: it must refuse again.
-          if (check && (k == 3 ? cross(state, ctx, v)
-                               : blind_chord(state, ctx, v, index.steps_of(v), index.faces()))
-                           .applied) {
-            remembered_refusal_applied(k, v);
-          }
+          if (check && collapse(v, k).applied) remembered_refusal_applied(k, v);
           continue;
         }
         if (k == 2) {
@@ -507,15 +509,10 @@ std::optional<std::string> shrink(WeaveState& state, WeaveContext& ctx, const St
           } else {
             applied = true;
           }
-        } else if (k == 3) {
-          const RuleResult r = cross(state, ctx, v);
-          applied = r.applied;
-          if (!applied) why = "cross refused: " + r.why;
         } else {
-          // Tried at the strip steps holding v on the shrinking side, in loop order.
-          const RuleResult r = blind_chord(state, ctx, v, index.steps_of(v), index.faces());
+          const RuleResult r = collapse(v, k);
           applied = r.applied;
-          if (!applied) why = "blind chord refused: " + r.why;
+          if (!applied) why = (k == 3 ? "cross refused: " : "blind chord refused: ") + r.why;
         }
         if (applied) break;
         // A rule refuses before it moves anything, so the walk goes on over the same front.

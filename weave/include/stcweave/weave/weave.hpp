@@ -291,6 +291,8 @@ struct ShrinkRecord {
 /// replaced (a shrink undone by backtracking gives its index to the next one; weaves merged
 /// one after the other number their shrinks from 0 each), any other is inserted in order.
 void file_shrink_record(std::vector<ShrinkRecord>& records, ShrinkRecord r);
+/// Marks the record of shrink `shrink` in `records` as failed (none: nothing happens).
+void mark_shrink_failed(std::vector<ShrinkRecord>& records, std::int32_t shrink);
 
 struct WeaveResult {
   /// The hexes. Input nodes keep their ids 0..num_input_nodes-1; interior nodes follow.
