@@ -18,6 +18,7 @@
 #include "stcweave/stc/loops.hpp"
 #include "stcweave/stc/surface_topology.hpp"
 #include "stcweave/stc/validate.hpp"
+#include "stcweave/weave/attached.hpp"
 
 namespace stcweave::primal {
 namespace {
@@ -440,16 +441,27 @@ struct BallWeave {
   std::size_t interior = 0;
 };
 
+/// `attached`: hexes on nodes of `s` put on its front before the weave (`weave_attached`).
 BallWeave weave_ball(const CutSurface& s, const weave::WeaveOptions& options,
-                     std::size_t first_interior, const CutOptions& cut_options) {
+                     std::size_t first_interior, const CutOptions& cut_options,
+                     const std::vector<stc::Hex>& attached = {}) {
   BallWeave out;
   if (cut_options.ball_weaver) {
+    if (!attached.empty())
+      throw InternalError("weave_ball: a ball weaver cannot take attached hexes");
     out.woven = cut_options.ball_weaver(s.mesh, options);
   } else {
     const std::vector<std::array<double, 4>> angles = options.rules == weave::RuleSet::Extended
                                                           ? dihedral_angles(s.mesh)
                                                           : std::vector<std::array<double, 4>>{};
-    out.woven = weave::weave(s.mesh.surface, options, angles);
+    if (attached.empty()) {
+      out.woven = weave::weave(s.mesh.surface, options, angles);
+    } else {
+      stc::HexComplex hexes;
+      hexes.hexes = attached;
+      hexes.num_nodes = s.mesh.surface.num_nodes;
+      out.woven = weave::weave_attached(s.mesh.surface, hexes, options, angles);
+    }
   }
   const std::size_t inputs = out.woven.num_input_nodes;
   out.interior = out.woven.complex.num_nodes - inputs;
@@ -1018,19 +1030,148 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
       solid.mesh.points.row(static_cast<Eigen::Index>(v)) =
           mesh.points.row(solid.final_id[v].value());
 
+    // The handle cycles of `shell` (genus `shell_genus`): disjoint simple cycles that bound
+    // inside, one per handle, in `found`, and other choices of them in `alternatives`.
+    const auto choose_cycles = [&](const CutSurface& shell, int shell_genus,
+                                   std::vector<std::vector<NodeId>>& found,
+                                   std::vector<std::vector<std::vector<NodeId>>>& alternatives) {
+      const HandleDiagnosis h = diagnose_handles(shell.mesh);
+      if (!h.decided) {
+        throw Unsupported(ComponentId(c).str() +
+                          ": cannot tell which cycles bound inside the "
+                          "solid (" +
+                          h.undecided_reason + "), so its handles cannot be cut");
+      }
+      if (!h.all_even()) {
+        throw TopologyError(ComponentId(c).str() +
+                            ": a handle cycle has odd length: no hex "
+                            "mesh with this boundary exists");
+      }
+      if (h.handles.size() != static_cast<std::size_t>(shell_genus)) {
+        throw Unsupported(ComponentId(c).str() + ": " +
+                          std::to_string(shell_genus - static_cast<int>(h.handles.size())) +
+                          " of its handle cycles have no simple representative: cutting them is "
+                          "not supported yet");
+      }
+      // Cycles that touch: one of them replaced by another of its class (handles.hpp).
+      found = disjoint_handle_cycles(h, shell.final_id.size());
+      if (found.empty()) {
+        std::vector<char> used(shell.final_id.size(), 0);
+        for (const HandleCycle& hc : h.handles) {
+          for (NodeId v : hc.nodes) {
+            if (used[v.index()] != 0) {
+              throw Unsupported(ComponentId(c).str() + ": its handle cycles share node " +
+                                shell.final_id[v.index()].str() +
+                                " and no choice among the other cycles of their classes is "
+                                "disjoint: cutting handles whose cycles touch is not supported");
+            }
+            used[v.index()] = 1;
+          }
+        }
+        throw InternalError(ComponentId(c).str() + ": no disjoint handle cycles were chosen");
+      }
+      // Fallbacks: one handle's cycle replaced by another of its class, when disjoint from
+      // the other handles' cycles.
+      for (std::size_t k = 0; k < h.alternatives.size(); ++k) {
+        for (const HandleCycle& alt : h.alternatives[k]) {
+          std::vector<char> other(shell.final_id.size(), 0);
+          for (std::size_t j = 0; j < found.size(); ++j)
+            if (j != k)
+              for (NodeId v : found[j]) other[v.index()] = 1;
+          if (std::any_of(alt.nodes.begin(), alt.nodes.end(),
+                          [&](NodeId v) { return other[v.index()] != 0; }))
+            continue;
+          std::vector<std::vector<NodeId>> set = found;
+          set[k] = alt.nodes;
+          alternatives.push_back(std::move(set));
+        }
+      }
+    };
+    int genus = topo.components[c].genus.value_or(0);
+    std::vector<std::vector<NodeId>> cycles;
+    std::vector<std::vector<std::vector<NodeId>>> fallbacks;
+    // A solid with handles and cavities: per cavity, the hex joining a cavity quad to an
+    // outer-shell quad, put on the front of every ball the handle route weaves.
+    std::vector<stc::Hex> columns;
     if (!cavities[c].empty()) {
       // A solid with cavities: one annulus (a ladder of 4 quads) per cavity, from the
-      // boundary of a cavity quad to that of the nearest quad of the outer shell, makes it
-      // balls; they are woven together and glued back.
-      for (std::size_t k : cavities[c])
+      // boundary of a cavity quad to that of the nearest quad of the outer shell, cuts off a
+      // column (the 6 quads of one hex) and joins the cavity's shell to the outer one. Without
+      // handles the pieces are balls, woven together and glued back; with handles (the outer
+      // shell's or a cavity's) the joined shell goes on to the handle route below.
+      for (std::size_t k : cavities[c]) {
+        // Its handle classes would cross the annulus that joins it to the outer shell twice:
+        // no set of disjoint simple cycles spans them there (docs/topology.md).
         if (topo.components[k].genus.value_or(0) > 0)
           throw Unsupported(ComponentId(k).str() + ": a cavity with handles is not supported yet");
-      if (topo.components[c].genus.value_or(0) > 0) {
-        throw Unsupported(ComponentId(c).str() +
-                          ": a solid with both handles and cavities is not supported yet");
       }
       CutSurface current = solid;
       std::vector<char> used(solid.final_id.size(), 0);
+      std::vector<char> rim(solid.final_id.size(), 0);  // the annuli's cycles
+      if (genus > 0) {
+        // Balls taken out of a solid change none of its handles: the cycles are those of the
+        // outer shell alone (the joined shell folds at the annuli, where the handle diagnosis
+        // cannot push cycles off the surface), chosen before the annuli, which avoid them.
+        CutSurface shell;
+        shell.mesh.points = solid.mesh.points;
+        shell.final_id = solid.final_id;
+        shell.mesh.surface.num_nodes = solid.mesh.surface.num_nodes;
+        for (std::size_t q = 0; q < solid_quad_component.size(); ++q)
+          if (solid_quad_component[q] == c)
+            shell.mesh.surface.quads.push_back(solid.mesh.surface.quads[q]);
+        std::vector<NodeId> renumber;
+        shell = compacted(shell, &renumber);
+        std::vector<NodeId> back(shell.final_id.size());
+        for (std::size_t v = 0; v < renumber.size(); ++v)
+          if (renumber[v].is_valid()) back[renumber[v].index()] = NodeId(v);
+        choose_cycles(shell, genus, cycles, fallbacks);
+        const auto to_solid = [&](std::vector<NodeId>& cycle) {
+          for (NodeId& v : cycle) v = back[v.index()];
+        };
+        for (auto& cycle : cycles) to_solid(cycle);
+        for (auto& set : fallbacks)
+          for (auto& cycle : set) to_solid(cycle);
+        // The disc spanning a cycle must stay clear of the cavities: the set of cycles whose
+        // worst clearance is largest comes first (ties: the order of choose_cycles).
+        // Clearance of a cycle: the distance from its centroid to the nearest cavity node,
+        // less its radius (the farthest cycle node from the centroid).
+        std::vector<char> cavity_node(solid.final_id.size(), 0);
+        for (std::size_t q = 0; q < solid_quad_component.size(); ++q)
+          if (solid_quad_component[q] != c)
+            for (NodeId v : solid.mesh.surface.quads[q]) cavity_node[v.index()] = 1;
+        const auto clearance = [&](const std::vector<std::vector<NodeId>>& set) {
+          double worst = INFINITY;
+          for (const auto& cycle : set) {
+            Eigen::RowVector3d centre = Eigen::RowVector3d::Zero();
+            for (NodeId v : cycle) centre += solid.mesh.points.row(v.value());
+            centre /= static_cast<double>(cycle.size());
+            double radius = 0.0;
+            for (NodeId v : cycle)
+              radius = std::max(radius, (solid.mesh.points.row(v.value()) - centre).norm());
+            double nearest = INFINITY;
+            for (std::size_t v = 0; v < cavity_node.size(); ++v)
+              if (cavity_node[v] != 0)
+                nearest = std::min(
+                    nearest, (solid.mesh.points.row(static_cast<Eigen::Index>(v)) - centre).norm());
+            worst = std::min(worst, nearest - radius);
+          }
+          return worst;
+        };
+        fallbacks.insert(fallbacks.begin(), cycles);
+        std::vector<double> clear(fallbacks.size());
+        for (std::size_t k = 0; k < fallbacks.size(); ++k) clear[k] = clearance(fallbacks[k]);
+        std::vector<std::size_t> order(fallbacks.size());
+        for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+        std::stable_sort(order.begin(), order.end(),
+                         [&](std::size_t a, std::size_t b) { return clear[a] > clear[b]; });
+        std::vector<std::vector<std::vector<NodeId>>> sorted;
+        for (std::size_t k : order) sorted.push_back(std::move(fallbacks[k]));
+        cycles = sorted.front();
+        fallbacks.assign(std::make_move_iterator(sorted.begin() + 1),
+                         std::make_move_iterator(sorted.end()));
+        for (const auto& cycle : cycles)
+          for (NodeId v : cycle) used[v.index()] = 1;
+      }
       const auto centroid = [&](std::size_t q) {
         Eigen::Vector3d m = Eigen::Vector3d::Zero();
         for (NodeId v : solid.mesh.surface.quads[q])
@@ -1067,6 +1208,8 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
         double best_pairing = INFINITY;
         for (int shift = 0; shift < 4; ++shift) {
           for (int dir : {1, -1}) {
+            // A column hex (inner then outer, VTK order) is positive for dir = -1 only.
+            if (genus > 0 && dir == 1) continue;
             std::vector<NodeId> candidate;
             double cost = 0.0;
             for (int p = 0; p < 4; ++p) {
@@ -1083,98 +1226,68 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
             }
           }
         }
-        for (NodeId v : outer) used[v.index()] = 1;
-        for (NodeId v : inner) used[v.index()] = 1;
-        current = cut_annulus(current, outer, inner);
+        for (NodeId v : outer) used[v.index()] = rim[v.index()] = 1;
+        for (NodeId v : inner) used[v.index()] = rim[v.index()] = 1;
         HandleCut hc;
         for (NodeId v : outer) hc.cycle.push_back(solid.final_id[v.index()]);
         for (NodeId v : inner) hc.cycle.push_back(solid.final_id[v.index()]);
         hc.grid_a = 1;
         hc.grid_b = 4;  // an annulus of 1 x 4 quads
-        hc.disc = "annulus 1x4";
         hc.attempts = 1;
+        if (genus == 0) {
+          current = cut_annulus(current, outer, inner);
+          hc.disc = "annulus 1x4";
+        } else {
+          // With handles the column is not cut off but attached: woven apart, the joined
+          // shell's weave may fill the column's place with hexes of its own (its front does
+          // not hold the column's quads); attached, the weaver knows the hex behind the
+          // annulus and builds none sharing two faces with it.
+          columns.push_back(
+              {inner[0], inner[1], inner[2], inner[3], outer[0], outer[1], outer[2], outer[3]});
+          hc.disc = "column hex";
+        }
         rep.cuts.push_back(hc);
       }
-      rep.cut_seconds += seconds_since(t0);
-      const stc::LoopSet loops =
-          stc::find_loops(current.mesh.surface, stc::FindLoopsOptions{false});
-      if (loops.num_self_intersecting() > 0 &&
-          (!cut_options.allow_self_crossing ||
-           loops.num_self_crossing_quads() > self_crossing_quads_of(solid))) {
-        throw Unsupported(ComponentId(c).str() +
-                          ": cutting its cavities off gives a surface with a self-intersecting "
-                          "loop: not supported yet");
+      if (genus == 0) {
+        const stc::LoopSet loops =
+            stc::find_loops(current.mesh.surface, stc::FindLoopsOptions{false});
+        if (loops.num_self_intersecting() > 0 &&
+            (!cut_options.allow_self_crossing ||
+             loops.num_self_crossing_quads() > self_crossing_quads_of(solid))) {
+          throw Unsupported(ComponentId(c).str() +
+                            ": cutting its cavities off gives a surface with a "
+                            "self-intersecting loop: not supported yet");
+        }
+        rep.cut_seconds += seconds_since(t0);
+        const auto t1 = std::chrono::steady_clock::now();
+        const BallWeave w = weave_ball(current, options, next_final, cut_options);
+        rep.weave_seconds += seconds_since(t1);
+        const std::string problem = glue_problem(w.hexes, next_final + w.interior, rep);
+        if (!problem.empty()) {
+          throw Unsupported(ComponentId(c).str() +
+                            ": the cavity cut woven and glued back breaks an invariant (" +
+                            problem.substr(0, 200) + ")");
+        }
+        next_final += w.interior;
+        append_ball(result, w);
+        continue;
       }
-      const auto t1 = std::chrono::steady_clock::now();
-      const BallWeave w = weave_ball(current, options, next_final, cut_options);
-      rep.weave_seconds += seconds_since(t1);
-      const std::string problem = glue_problem(w.hexes, next_final + w.interior, rep);
-      if (!problem.empty()) {
+      // Handles too: the handle route goes on, its balls woven with the column hexes on their
+      // fronts. The outer shell's cycles avoid the columns; a fallback through one is dropped.
+      if (cut_options.ball_weaver) {
         throw Unsupported(ComponentId(c).str() +
-                          ": the cavity cut woven and glued back breaks an invariant (" +
-                          problem.substr(0, 200) + ")");
+                          ": a solid with handles and cavities woven by another ball weaver "
+                          "(self-intersecting loops) is not supported yet");
       }
-      next_final += w.interior;
-      append_ball(result, w);
-      continue;
+      std::erase_if(fallbacks, [&](const std::vector<std::vector<NodeId>>& set) {
+        return std::any_of(set.begin(), set.end(), [&](const std::vector<NodeId>& cycle) {
+          return std::any_of(cycle.begin(), cycle.end(),
+                             [&](NodeId v) { return rim[v.index()] != 0; });
+        });
+      });
     }
 
-    const int genus = topo.components[c].genus.value_or(0);
-    std::vector<std::vector<NodeId>> cycles;
-    std::vector<std::vector<std::vector<NodeId>>> fallbacks;
-    if (genus > 0) {
-      const HandleDiagnosis h = diagnose_handles(solid.mesh);
-      if (!h.decided) {
-        throw Unsupported(ComponentId(c).str() +
-                          ": cannot tell which cycles bound inside the "
-                          "solid (" +
-                          h.undecided_reason + "), so its handles cannot be cut");
-      }
-      if (h.handles.size() != static_cast<std::size_t>(genus)) {
-        throw Unsupported(ComponentId(c).str() + ": " +
-                          std::to_string(genus - static_cast<int>(h.handles.size())) +
-                          " of its handle cycles have no simple representative: cutting them is "
-                          "not supported yet");
-      }
-      if (!h.all_even()) {
-        throw TopologyError(ComponentId(c).str() +
-                            ": a handle cycle has odd length: no hex "
-                            "mesh with this boundary exists");
-      }
-      // Cycles that touch: one of them replaced by another of its class (handles.hpp).
-      cycles = disjoint_handle_cycles(h, solid.final_id.size());
-      if (cycles.empty()) {
-        std::vector<char> used(solid.final_id.size(), 0);
-        for (const HandleCycle& hc : h.handles) {
-          for (NodeId v : hc.nodes) {
-            if (used[v.index()] != 0) {
-              throw Unsupported(ComponentId(c).str() + ": its handle cycles share node " +
-                                solid.final_id[v.index()].str() +
-                                " and no choice among the other cycles of their classes is "
-                                "disjoint: cutting handles whose cycles touch is not supported");
-            }
-            used[v.index()] = 1;
-          }
-        }
-        throw InternalError(ComponentId(c).str() + ": no disjoint handle cycles were chosen");
-      }
-      // Fallbacks: one handle's cycle replaced by another of its class, when disjoint from
-      // the other handles' cycles.
-      for (std::size_t k = 0; k < h.alternatives.size(); ++k) {
-        for (const HandleCycle& alt : h.alternatives[k]) {
-          std::vector<char> other(solid.final_id.size(), 0);
-          for (std::size_t j = 0; j < cycles.size(); ++j)
-            if (j != k)
-              for (NodeId v : cycles[j]) other[v.index()] = 1;
-          if (std::any_of(alt.nodes.begin(), alt.nodes.end(),
-                          [&](NodeId v) { return other[v.index()] != 0; }))
-            continue;
-          std::vector<std::vector<NodeId>> set = cycles;
-          set[k] = alt.nodes;
-          fallbacks.push_back(std::move(set));
-        }
-      }
-    }
+    if (genus > 0 && cycles.empty()) choose_cycles(solid, genus, cycles, fallbacks);
     // With `allow_self_crossing`, the solid's own count of self-crossing quads bounds its cuts'.
     const std::size_t solid_self_crossing_quads =
         cut_options.allow_self_crossing ? self_crossing_quads_of(solid) : 0;
@@ -1298,7 +1411,7 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
         for (const weave::WeaveOptions& attempt : *chain) {
           t1 = std::chrono::steady_clock::now();
           try {
-            BallWeave w = weave_ball(cut, attempt, trial_final, cut_options);
+            BallWeave w = weave_ball(cut, attempt, trial_final, cut_options, columns);
             rep.weave_seconds += seconds_since(t1);
             const std::string problem = glue_problem(w.hexes, trial_final + w.interior, rep);
             if (!problem.empty()) {
@@ -1341,7 +1454,7 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
       ball = weave_ball(solid, uncut_options, next_final, cut_options);
       rep.weave_seconds += seconds_since(t1);
     } else if (const auto primary = cycles;
-               !(cut_options.slab_first && try_slabs(primary)) &&
+               !(columns.empty() && cut_options.slab_first && try_slabs(primary)) &&
                !std::any_of(passes.begin(), passes.end(),
                             [&](const Pass& pass) {
                               follow_first = pass.follow_first;
@@ -1359,7 +1472,7 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
                                                    return search(solid, 0, next_final);
                                                  });
                             }) &&
-               !(!cut_options.slab_first && try_slabs(primary))) {
+               !(columns.empty() && !cut_options.slab_first && try_slabs(primary))) {
       cycles = primary;
     }
     if (!ball) {

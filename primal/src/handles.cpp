@@ -604,11 +604,18 @@ HandleDiagnosis diagnose_handles(const SurfaceMesh& mesh, const HandleOptions& o
             x[k] = prefix[v * words + k] ^ prefix[w * words + k] ^ mask[e][k];
           if (is_zero(x) || !bounds_inside(x)) continue;
           const Candidate c{cycle_length(t, v, w), r, v, w};
+          // A root's own candidate: among the shortest, the one whose lowest common ancestor
+          // is nearest the root (the cycle through the root where there is one), so that
+          // roots far apart give cycles far apart.
+          const auto lca_depth = [&](const Candidate& k) {
+            return (t.depth[k.u] + t.depth[k.w] + 1 - k.length) / 2;
+          };
           auto rb = root_best.find(x);
           if (rb == root_best.end()) {
             root_best.emplace(x, c);
-          } else if (std::tie(c.length, c.u, c.w) <
-                     std::tie(rb->second.length, rb->second.u, rb->second.w)) {
+          } else if (std::make_tuple(c.length, lca_depth(c), c.u, c.w) <
+                     std::make_tuple(rb->second.length, lca_depth(rb->second), rb->second.u,
+                                     rb->second.w)) {
             rb->second = c;
           }
           auto it = best.find(x);

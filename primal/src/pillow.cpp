@@ -125,16 +125,22 @@ PillowReport pillow(HexMesh& mesh, const stc::QuadSurface& boundary, const Pillo
     for (const stc::Hex& x : mesh.complex.hexes) {
       for (int k = 0; k < 8; ++k) {
         const auto& c = kHexCorners[static_cast<std::size_t>(k)];
-        const NodeId v = x[static_cast<std::size_t>(c[0])];
-        if (v.index() >= nb || shell[v.index()] < 0 ||
-            selected[static_cast<std::size_t>(shell[v.index()])])
-          continue;
         if (!std::all_of(c.begin(), c.end(), [&](int local) {
-              return x[static_cast<std::size_t>(local)].index() < nb;
+              const NodeId v = x[static_cast<std::size_t>(local)];
+              return v.index() < nb && shell[v.index()] >= 0;
+            }))
+          continue;
+        // Every shell holding a node of the corner (a corner can join two shells: the column
+        // hex of a cavity's cut, docs/topology.md), unless all are selected already.
+        if (std::all_of(c.begin(), c.end(), [&](int local) {
+              return selected[static_cast<std::size_t>(
+                  shell[x[static_cast<std::size_t>(local)].index()])];
             }))
           continue;
         if (corner_scaled_jacobian(mesh.points, x, k) < options.min_fixed_corner)
-          selected[static_cast<std::size_t>(shell[v.index()])] = true;
+          for (int local : c)
+            selected[static_cast<std::size_t>(shell[x[static_cast<std::size_t>(local)].index()])] =
+                true;
       }
     }
   }
