@@ -513,25 +513,35 @@ std::string glue_problem(const std::vector<stc::Hex>& hexes, std::size_t num_nod
 }
 
 /// Appends a woven (and glued) ball to `result`: hexes, their shrink, rule and node records
-/// (nodes in the ball weave's numbering), its shrink records (each ball numbers its shrinks
-/// from 0: a later ball's record replaces an earlier one's of the same index), the weave's
-/// statistics and its trace (hex ids shifted).
+/// (nodes in the ball weave's numbering), its shrink records, the weave's statistics and its
+/// trace (hex ids shifted). Each ball numbers its shrinks from 0: they are shifted past those
+/// already in `result`, so that every shrink keeps its own record (its depth, its loop).
 void append_ball(weave::WeaveResult& result, const BallWeave& ball) {
   const std::size_t hex_offset = result.complex.hexes.size();
+  std::int32_t shrink_offset = 0;
+  for (std::int32_t sh : result.hex_shrink) shrink_offset = std::max(shrink_offset, sh + 1);
+  for (const weave::ShrinkRecord& r : result.shrinks)
+    shrink_offset = std::max(shrink_offset, r.shrink + 1);
+  for (const weave::TraceEvent& e : result.trace)
+    shrink_offset = std::max(shrink_offset, e.shrink + 1);
+  const auto shifted = [&](std::int32_t sh) { return sh >= 0 ? sh + shrink_offset : sh; };
   for (const stc::Hex& h : ball.hexes) result.complex.hexes.push_back(h);
-  for (std::int32_t sh : ball.woven.hex_shrink) result.hex_shrink.push_back(sh);
+  for (std::int32_t sh : ball.woven.hex_shrink) result.hex_shrink.push_back(shifted(sh));
   for (const std::string& r : ball.woven.hex_rule) result.hex_rule.push_back(r);
   result.hex_node.resize(hex_offset, NodeId::invalid());
   result.hex_node.insert(result.hex_node.end(), ball.woven.hex_node.begin(),
                          ball.woven.hex_node.end());
   result.hex_node.resize(result.complex.hexes.size(), NodeId::invalid());
-  for (const weave::ShrinkRecord& r : ball.woven.shrinks)
-    weave::file_shrink_record(result.shrinks, r);
+  for (weave::ShrinkRecord r : ball.woven.shrinks) {
+    r.shrink = shifted(r.shrink);
+    weave::file_shrink_record(result.shrinks, std::move(r));
+  }
   add_stats(result.stats, ball.woven.stats);
   result.recoveries.insert(result.recoveries.end(), ball.woven.recoveries.begin(),
                            ball.woven.recoveries.end());
   for (weave::TraceEvent e : ball.woven.trace) {
     if (e.hex.is_valid()) e.hex = HexId(e.hex.index() + hex_offset);
+    e.shrink = shifted(e.shrink);
     result.trace.push_back(std::move(e));
   }
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <iostream>
+#include <set>
 
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/stc/surface_topology.hpp"
@@ -134,6 +135,24 @@ TEST(Pipeline, DisjointSolidsAreWovenSeparatelyAndCombined) {
   EXPECT_EQ(r.mesh.complex.hexes.size(), 16u);
   EXPECT_TRUE(r.validation.valid) << r.validation.summary();
   EXPECT_EQ(r.quality.inverted, 0u);
+  // Each shrink keeps its own record: the two solids' shrinks are numbered apart.
+  const auto ring_nodes = static_cast<std::size_t>(ring.points.rows());
+  std::set<std::int32_t> ring_shrinks, box_shrinks, recorded;
+  for (const weave::ShrinkRecord& rec : r.woven.shrinks) recorded.insert(rec.shrink);
+  EXPECT_EQ(recorded.size(), r.woven.shrinks.size());
+  ASSERT_EQ(r.woven.hex_shrink.size(), r.woven.complex.hexes.size());
+  for (std::size_t h = 0; h < r.woven.complex.hexes.size(); ++h) {
+    const std::int32_t sh = r.woven.hex_shrink[h];
+    if (sh < 0) continue;
+    EXPECT_TRUE(recorded.contains(sh)) << "hex " << h << ": shrink " << sh << " has no record";
+    const bool in_ring =
+        std::any_of(r.woven.complex.hexes[h].begin(), r.woven.complex.hexes[h].end(),
+                    [&](NodeId v) { return v.index() < ring_nodes; });
+    (in_ring ? ring_shrinks : box_shrinks).insert(sh);
+  }
+  EXPECT_FALSE(ring_shrinks.empty());
+  EXPECT_FALSE(box_shrinks.empty());
+  for (std::int32_t sh : box_shrinks) EXPECT_FALSE(ring_shrinks.contains(sh)) << sh;
 }
 
 TEST(Pipeline, HollowBoxIsMeshedThroughAnAnnulusCut) {
