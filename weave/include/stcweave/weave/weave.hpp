@@ -289,7 +289,8 @@ struct ShrinkRecord {
 
 /// Files `r` into `records` (sorted by shrink index): a record with the same index is
 /// replaced (a shrink undone by backtracking gives its index to the next one; weaves merged
-/// one after the other number their shrinks from 0 each), any other is inserted in order.
+/// one after the other shift their shrink indices past the earlier ones' first, as
+/// `weave_solids` does), any other is inserted in order.
 void file_shrink_record(std::vector<ShrinkRecord>& records, ShrinkRecord r);
 /// Marks the record of shrink `shrink` in `records` as failed (none: nothing happens).
 void mark_shrink_failed(std::vector<ShrinkRecord>& records, std::int32_t shrink);
