@@ -1159,10 +1159,12 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
             for (NodeId v : cycle)
               radius = std::max(radius, (solid.mesh.points.row(v.value()) - centre).norm());
             double nearest = INFINITY;
-            for (std::size_t v = 0; v < cavity_node.size(); ++v)
-              if (cavity_node[v] != 0)
+            for (std::size_t v = 0; v < cavity_node.size(); ++v) {
+              if (cavity_node[v] != 0) {
                 nearest = std::min(
                     nearest, (solid.mesh.points.row(static_cast<Eigen::Index>(v)) - centre).norm());
+              }
+            }
             worst = std::min(worst, nearest - radius);
           }
           return worst;
@@ -1175,6 +1177,7 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
         std::stable_sort(order.begin(), order.end(),
                          [&](std::size_t a, std::size_t b) { return clear[a] > clear[b]; });
         std::vector<std::vector<std::vector<NodeId>>> sorted;
+        sorted.reserve(order.size());
         for (std::size_t k : order) sorted.push_back(std::move(fallbacks[k]));
         cycles = sorted.front();
         fallbacks.assign(std::make_move_iterator(sorted.begin() + 1),

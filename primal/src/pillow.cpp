@@ -137,10 +137,11 @@ PillowReport pillow(HexMesh& mesh, const stc::QuadSurface& boundary, const Pillo
                   shell[x[static_cast<std::size_t>(local)].index()])];
             }))
           continue;
-        if (corner_scaled_jacobian(mesh.points, x, k) < options.min_fixed_corner)
+        if (corner_scaled_jacobian(mesh.points, x, k) < options.min_fixed_corner) {
           for (int local : c)
             selected[static_cast<std::size_t>(shell[x[static_cast<std::size_t>(local)].index()])] =
                 true;
+        }
       }
     }
   }
