@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <iterator>
 #include <map>
 #include <numeric>
 #include <optional>
@@ -441,14 +442,13 @@ struct BallWeave {
   std::size_t interior = 0;
 };
 
-/// `attached`: hexes on nodes of `s` put on its front before the weave (`weave_attached`).
+/// `attached`: hexes on nodes of `s` put on its front before the weave (`weave_attached`;
+/// then `cut_options.ball_weaver` is not used: the solids that have them are loop-clean).
 BallWeave weave_ball(const CutSurface& s, const weave::WeaveOptions& options,
                      std::size_t first_interior, const CutOptions& cut_options,
                      const std::vector<stc::Hex>& attached = {}) {
   BallWeave out;
-  if (cut_options.ball_weaver) {
-    if (!attached.empty())
-      throw InternalError("weave_ball: a ball weaver cannot take attached hexes");
+  if (cut_options.ball_weaver && attached.empty()) {
     out.woven = cut_options.ball_weaver(s.mesh, options);
   } else {
     const std::vector<std::array<double, 4>> angles = options.rules == weave::RuleSet::Extended
@@ -1053,9 +1053,18 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
                           h.undecided_reason + "), so its handles cannot be cut");
       }
       if (!h.all_even()) {
-        throw TopologyError(ComponentId(c).str() +
-                            ": a handle cycle has odd length: no hex "
-                            "mesh with this boundary exists");
+        std::string which = "a combination of cycles over several shells";
+        if (h.odd_handle >= 0) {
+          const auto& nodes = h.handles[static_cast<std::size_t>(h.odd_handle)].nodes;
+          which = "the cycle ";
+          for (std::size_t i = 0; i < nodes.size() && i < 8; ++i)
+            which += (i > 0 ? "-" : "") + shell.final_id[nodes[i].index()].str();
+          which += (nodes.size() > 8 ? "-... (" : " (") + std::to_string(nodes.size()) + " edges)";
+        }
+        throw TopologyError(ComponentId(c).str() + ": " + which +
+                            " bounds inside the solid and has odd length: no hex mesh with this "
+                            "boundary exists (Erickson 2014); re-mesh the surface so that its "
+                            "handle cycles are even");
       }
       if (h.handles.size() != static_cast<std::size_t>(shell_genus)) {
         throw Unsupported(ComponentId(c).str() + ": " +
@@ -1107,8 +1116,9 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
       // A solid with cavities: one annulus (a ladder of 4 quads) per cavity, from the
       // boundary of a cavity quad to that of the nearest quad of the outer shell, cuts off a
       // column (the 6 quads of one hex) and joins the cavity's shell to the outer one. Without
-      // handles the pieces are balls, woven together and glued back; with handles (the outer
-      // shell's or a cavity's) the joined shell goes on to the handle route below.
+      // handles the pieces are balls, woven together and glued back; with handles on the outer
+      // shell the columns are not cut off but attached to the front of the handle route's
+      // balls, and the solid goes on to the handle route below.
       for (std::size_t k : cavities[c]) {
         // Its handle classes would cross the annulus that joins it to the outer shell twice:
         // no set of disjoint simple cycles spans them there (docs/topology.md).
@@ -1213,7 +1223,10 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
           }
         }
         if (!std::isfinite(best))
-          throw Unsupported(ComponentId(k).str() + ": no free quad pair to join the cavity");
+          throw Unsupported(ComponentId(k).str() +
+                            ": no quad of the cavity and of the outer shell is free to join them "
+                            "(every pair touches a handle cycle or another cavity's join): "
+                            "refine the surface");
         const stc::Quad& outer_quad = solid.mesh.surface.quads[qo];
         const stc::Quad& inner_quad = solid.mesh.surface.quads[qi];
         std::vector<NodeId> outer(outer_quad.begin(), outer_quad.end());
@@ -1221,8 +1234,10 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
         double best_pairing = INFINITY;
         for (int shift = 0; shift < 4; ++shift) {
           for (int dir : {1, -1}) {
-            // A column hex (inner then outer, VTK order) is positive for dir = -1 only.
-            if (genus > 0 && dir == 1) continue;
+            // Only dir = -1 pairs the cycles the way the surface's orientation needs: the
+            // annulus of `cut_annulus` then fits both shells, and a column hex (inner then
+            // outer, VTK order) is positive. The reflected pairings are skipped.
+            if (dir == 1) continue;
             std::vector<NodeId> candidate;
             double cost = 0.0;
             for (int p = 0; p < 4; ++p) {
@@ -1287,10 +1302,11 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
       }
       // Handles too: the handle route goes on, its balls woven with the column hexes on their
       // fronts. The outer shell's cycles avoid the columns; a fallback through one is dropped.
-      if (cut_options.ball_weaver) {
+      if (cut_options.ball_weaver && self_crossing_quads_of(solid) > 0) {
         throw Unsupported(ComponentId(c).str() +
-                          ": a solid with handles and cavities woven by another ball weaver "
-                          "(self-intersecting loops) is not supported yet");
+                          ": a solid with handles and cavities whose loops cross themselves is "
+                          "not supported yet: re-mesh the surface so that its loops do not cross "
+                          "themselves (docs/self-intersecting-loops.md)");
       }
       std::erase_if(fallbacks, [&](const std::vector<std::vector<NodeId>>& set) {
         return std::any_of(set.begin(), set.end(), [&](const std::vector<NodeId>& cycle) {
@@ -1347,7 +1363,7 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
     const std::vector<weave::WeaveOptions>* chain = &passes[0].chain;
     std::optional<BallWeave> ball;
     std::vector<BallWeave> slabs;  // the slab route's slabs
-    std::string slab_why;
+    std::string slab_why = columns.empty() ? "" : "not tried: the solid has cavities";
     std::vector<HandleCut> cuts(cycles.size());
     std::size_t loop_checks = 0;
     std::size_t self_intersecting_cuts = 0;

@@ -33,6 +33,24 @@ TEST(Handles, TorusMeridianIsFoundEvenWhenTheLongitudeIsShorter) {
   EXPECT_TRUE(h.all_even());
 }
 
+TEST(Handles, TheAlternativesOfATorusMeridianAreOtherMeridians) {
+  // Each root keeps the shortest cycle nearest it, so the alternatives are meridians at other
+  // cross-sections (before, every root kept the meridian of the smallest edge ids).
+  const SurfaceMesh torus = test::torus_surface(8, 12, 3.0, 1.0);
+  const HandleDiagnosis h = diagnose_handles(torus);
+  ASSERT_TRUE(h.decided) << h.undecided_reason;
+  ASSERT_EQ(h.handles.size(), 1u);
+  ASSERT_EQ(h.alternatives.size(), 1u);
+  ASSERT_GE(h.alternatives[0].size(), 2u);
+  std::set<int> all{*sections(h.handles[0], 8).begin()};
+  for (const HandleCycle& alt : h.alternatives[0]) {
+    EXPECT_EQ(alt.length(), 8u);
+    const std::set<int> js = sections(alt, 8);
+    ASSERT_EQ(js.size(), 1u);  // a meridian
+    EXPECT_TRUE(all.insert(*js.begin()).second) << "cross-section " << *js.begin() << " twice";
+  }
+}
+
 TEST(Handles, SquareRingHandleIsTheFourEdgeSection) {
   const HandleDiagnosis h = diagnose_handles(test::voxel_surface(test::ring_cells()));
   ASSERT_TRUE(h.decided) << h.undecided_reason;

@@ -211,6 +211,9 @@ TEST(Pipeline, HandlesAndACavityTogetherAreMeshed) {
   ASSERT_EQ(r.solids.cuts.size(), 2u);
   EXPECT_EQ(r.solids.cuts[0].disc, "column hex");
   EXPECT_EQ(r.quality.inverted, 0u);
+  // The column's fixed corners join the two shells: both are pillowed (with the cavity's
+  // alone, 4 hexes stayed inverted).
+  EXPECT_EQ(r.pillow.shells_pillowed, 2u) << r.pillow.reason;
   std::cout << "torus with a cavity (" << input.surface.quads.size()
             << " quads): " << r.mesh.complex.hexes.size() << " hexes, min scaled Jacobian "
             << r.quality.min_scaled_jacobian << ", handle disc " << r.solids.cuts[1].disc << "\n";

@@ -70,7 +70,10 @@ struct HandleCut {
   int grid_a = 0;             ///< the disc is a grid_a x grid_b grid of quads
   int grid_b = 0;
   /// The disc, in words: "3x3" (a grid), "3x3 O-grid", "loop-following (14 quads)" (a chord
-  /// disc pairing the crossings of each loop, grid_a = grid_b = 0), "annulus 1x4" (a cavity),
+  /// disc pairing the crossings of each loop, grid_a = grid_b = 0), "annulus 1x4" (a cavity
+  /// cut off along the annulus between a cavity quad and an outer-shell quad), "column hex" (the
+  /// hex between those two quads attached to the front instead, in a solid with handles; the
+  /// cycle lists the outer quad's nodes, then the cavity quad's),
   /// "slab: A and B, N hexes" (the slab route: the discs on the cycle and on the band's other
   /// boundary, and the slab's hexes).
   std::string disc;
@@ -91,10 +94,14 @@ struct SolidsReport {
 
 /// Weaves every solid of `mesh` on its own, cutting its handles first, and combines them:
 /// input nodes keep their ids, interior nodes (disc nodes included) follow, solid by solid.
-/// \pre `mesh` is closed, manifold, oriented outward (`orient_outward`), no component inside
-///      another, every handle cycle even (`require_weavable`).
+/// \pre `mesh` is closed, manifold, oriented outward (`orient_outward`; a cavity's shell then
+///      faces into the cavity), no shell inside a cavity, every handle cycle even
+///      (`require_weavable`).
 /// \throw Unsupported when the handle diagnosis cannot decide, when handle cycles share nodes,
-///        or when no disc choice gives a loop-clean cut, a complete weave and a valid glue.
+///        when no disc choice gives a loop-clean cut, a complete weave and a valid glue, for a
+///        cavity with handles, for a solid with handles and cavities whose loops cross
+///        themselves, and when no quad pair is free to join a cavity.
+/// \throw TopologyError when a handle cycle is odd (no hex mesh exists).
 /// \throw WeaveError when a solid without handles cannot be woven.
 weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptions& options,
                                 const CutOptions& cut_options = {}, SolidsReport* report = nullptr);

@@ -30,9 +30,10 @@ namespace stcweave::primal {
 
 /// When the pipeline pillows.
 enum class PillowMode {
-  /// Pillow the shells that need it: those with a hex corner whose four nodes all lie on the
-  /// shell (so no placement of the interior nodes can change its Jacobian) with a scaled
-  /// Jacobian below `PillowOptions::min_fixed_corner` (docs/pillowing.md says why).
+  /// Pillow the shells that need it: those holding a node of a hex corner whose four nodes
+  /// all lie on the boundary (so no placement of the interior nodes can change its Jacobian)
+  /// with a scaled Jacobian below `PillowOptions::min_fixed_corner` (docs/pillowing.md says
+  /// why; a corner whose nodes lie on two shells selects both).
   Auto,
   Always,  ///< pillow every shell
   Never,   ///< never pillow
@@ -46,8 +47,8 @@ enum class PillowMode {
 /// Options of `pillow` (plain values; defaults measured in docs/pillowing.md).
 struct PillowOptions {
   PillowMode mode = PillowMode::Auto;
-  /// Auto: a shell is pillowed when one of its fixed corners (a hex corner whose four nodes
-  /// are boundary nodes of that shell) has a scaled Jacobian below this. A corner on an edge
+  /// Auto: a shell is pillowed when a fixed corner (a hex corner whose four nodes are
+  /// boundary nodes) holding one of its nodes has a scaled Jacobian below this. A corner on an edge
   /// where two boundary faces of one hex meet at dihedral angle a has a scaled Jacobian of at
   /// most sin a, so 0.2 catches every such edge flatter than about 168 degrees (and every
   /// non-convex one), and leaves the 90-degree edges of boxes alone.
