@@ -7,8 +7,9 @@
                                            data/cylinder_tilted.step, data/torus_tilted.step,
                                            data/plate_hole_tilted.step,
                                            data/plate_blind_hole.step,
-                                           data/plate_two_holes.step and
-                                           data/box_cavity.step
+                                           data/plate_two_holes.step,
+                                           data/box_cavity.step and
+                                           data/hollow_torus.step
     data/make_cad_examples.py --shapes DIR writes the .step files of SHAPES into DIR (for
                                            bench/cad_vs_gmsh.py): cube, lblock, cylinder,
                                            sphere, plate_hole and torus as one solid each, and
@@ -38,6 +39,9 @@ a blind hole instead (radius 0.5, 0.3 deep from the top face; genus 0). plate_tw
 the same plate as one solid with two through-holes of radius 0.4 at (1.2, 1) and (2.8, 1)
 (genus 2; not split into blocks, so its surface is mixed or triangle-split). box_cavity.step:
 a 2 x 2 x 2 box with a spherical cavity of radius 0.5 at its centre (two shells, one solid).
+hollow_torus.step: a torus (radius 1, tube radius 0.4) with a toroidal cavity (tube radius
+0.2) along its core circle: a cavity with a handle (two shells of genus 1, one solid); its
+periodic faces are what Gmsh 4.8 may fail to mesh at coarse sizes.
 open_shell.step: a unit cube's boundary with one face missing: five faces and no volume, the
 input stcweave must refuse ("not a closed solid"); closed_shell.step: all six faces and no
 volume, which stcweave sews into a solid (as IGES files, which rarely hold solids, need).
@@ -106,6 +110,12 @@ def box_cavity(occ):
     box = occ.addBox(0, 0, 0, 2, 2, 2)
     ball = occ.addSphere(1, 1, 1, 0.5)
     occ.cut([(3, box)], [(3, ball)])
+
+
+def hollow_torus(occ):
+    outer = occ.addTorus(0, 0, 0, 1, 0.4)
+    inner = occ.addTorus(0, 0, 0, 1, 0.2)
+    occ.cut([(3, outer)], [(3, inner)])
 
 
 def open_shell(occ):
@@ -286,6 +296,7 @@ def main():
         write(os.path.join(here, "plate_blind_hole.step"), plate_blind_hole)
         write(os.path.join(here, "plate_two_holes.step"), plate_two_holes)
         write(os.path.join(here, "box_cavity.step"), box_cavity)
+        write(os.path.join(here, "hollow_torus.step"), hollow_torus)
     else:
         print(__doc__, file=sys.stderr)
         sys.exit(1)

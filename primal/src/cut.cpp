@@ -1123,7 +1123,11 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
         // Its handle classes would cross the annulus that joins it to the outer shell twice:
         // no set of disjoint simple cycles spans them there (docs/topology.md).
         if (topo.components[k].genus.value_or(0) > 0)
-          throw Unsupported(ComponentId(k).str() + ": a cavity with handles is not supported yet");
+          throw Unsupported(
+              ComponentId(k).str() +
+              ": a cavity with handles is not supported yet (its handle cycles would cross the "
+              "hex joining it to the outer shell twice, docs/topology.md); a triangle-split "
+              "surface of the same solid is meshed through the tet interior (--interior tets)");
       }
       CutSurface current = solid;
       std::vector<char> used(solid.final_id.size(), 0);

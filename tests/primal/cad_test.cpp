@@ -215,6 +215,32 @@ TEST(Cad, PlateWithASlotFromDataIsMeshedToAValidComplex) {
   EXPECT_LT(d, 1e-9);
 }
 
+TEST(Cad, AFaceGmshCannotMeshIsAnErrorNotACrash) {
+  STCWEAVE_SKIP_WITHOUT_GMSH();
+  // At the default size Gmsh 4.8 fails on the hollow torus's periodic faces, inside its
+  // OpenMP region, where the exception it used to throw ended the process.
+  try {
+    (void)mesh_cad_surface(data("hollow_torus.step"));
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    EXPECT_THAT(e.what(), HasSubstr("Gmsh could not mesh the surface"));
+    EXPECT_THAT(e.what(), HasSubstr("try another --size"));
+  }
+}
+
+TEST(Cad, ACavityWithAHandleIsMeshedThroughTheTetInterior) {
+  STCWEAVE_SKIP_WITHOUT_GMSH();
+  // Two shells of genus 1, one solid: the weave's cuts refuse a cavity with handles, the tet
+  // interior of the triangle-split surface meshes it.
+  const CadSurface cad = mesh_cad_surface(data("hollow_torus.step"), test::cad_options(0.15));
+  EXPECT_EQ(cad.record.recipe, CadRecipe::TriangleSplit);
+  const MeshResult r = mesh_cad(cad, true);
+  EXPECT_TRUE(r.validation.valid) << r.validation.summary();
+  EXPECT_EQ(r.diagnosis.genus, 2);
+  EXPECT_EQ(r.quality.inverted, 0u);
+  EXPECT_GT(r.quality.min_scaled_jacobian, 0.2);
+}
+
 TEST(Cad, AnOpenShellIsNotAClosedSolid) {
   STCWEAVE_SKIP_WITHOUT_GMSH();
   try {
