@@ -1122,12 +1122,13 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
       for (std::size_t k : cavities[c]) {
         // Its handle classes would cross the annulus that joins it to the outer shell twice:
         // no set of disjoint simple cycles spans them there (docs/topology.md).
-        if (topo.components[k].genus.value_or(0) > 0)
+        if (topo.components[k].genus.value_or(0) > 0) {
           throw Unsupported(
               ComponentId(k).str() +
               ": a cavity with handles is not supported yet (its handle cycles would cross the "
               "hex joining it to the outer shell twice, docs/topology.md); a triangle-split "
               "surface of the same solid is meshed through the tet interior (--interior tets)");
+        }
       }
       CutSurface current = solid;
       std::vector<char> used(solid.final_id.size(), 0);
@@ -1226,11 +1227,12 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
             }
           }
         }
-        if (!std::isfinite(best))
+        if (!std::isfinite(best)) {
           throw Unsupported(ComponentId(k).str() +
                             ": no quad of the cavity and of the outer shell is free to join them "
                             "(every pair touches a handle cycle or another cavity's join): "
                             "refine the surface");
+        }
         const stc::Quad& outer_quad = solid.mesh.surface.quads[qo];
         const stc::Quad& inner_quad = solid.mesh.surface.quads[qi];
         std::vector<NodeId> outer(outer_quad.begin(), outer_quad.end());
