@@ -486,17 +486,19 @@ CadSurface mesh_current_model(const CadOptions& options, CadRecord record) {
     // Gmsh meshes the faces inside an OpenMP region, where an error it throws (its default,
     // General.AbortOnError 2) cannot be caught and ends the process ("Impossible to mesh
     // periodic surface" on a hollow torus): while it meshes, it only logs errors, and the log
-    // is read below.
+    // is read below. Its own setting comes back after.
+    double abort_on_error = 2;
+    gmsh::option::getNumber("General.AbortOnError", abort_on_error);
     gmsh::option::setNumber("General.AbortOnError", 0);
     try {
       gmsh::model::mesh::generate(2);
     } catch (...) {
-      gmsh::option::setNumber("General.AbortOnError", 2);
+      gmsh::option::setNumber("General.AbortOnError", abort_on_error);
       const std::string reason = gmsh_reason();
       const GmshLog log = take_log();
       return reason + (log.errors.empty() ? "" : " [" + join(log.errors, "; ") + "]");
     }
-    gmsh::option::setNumber("General.AbortOnError", 2);
+    gmsh::option::setNumber("General.AbortOnError", abort_on_error);
     const GmshLog log = take_log();
     record.warnings.insert(record.warnings.end(), log.warnings.begin(), log.warnings.end());
     if (!log.errors.empty()) return join(log.errors, "; ");

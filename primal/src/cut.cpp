@@ -1055,11 +1055,9 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
       if (!h.all_even()) {
         std::string which = "a combination of cycles over several shells";
         if (h.odd_handle >= 0) {
-          const auto& nodes = h.handles[static_cast<std::size_t>(h.odd_handle)].nodes;
-          which = "the cycle ";
-          for (std::size_t i = 0; i < nodes.size() && i < 8; ++i)
-            which += (i > 0 ? "-" : "") + shell.final_id[nodes[i].index()].str();
-          which += (nodes.size() > 8 ? "-... (" : " (") + std::to_string(nodes.size()) + " edges)";
+          const HandleCycle& odd = h.handles[static_cast<std::size_t>(h.odd_handle)];
+          which = "the cycle " + cycle_name(odd, shell.final_id) + " (" +
+                  std::to_string(odd.length()) + " edges)";
         }
         throw TopologyError(ComponentId(c).str() + ": " + which +
                             " bounds inside the solid and has odd length: no hex mesh with this "

@@ -1,6 +1,7 @@
 #include "stcweave/primal/pillow.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <sstream>
@@ -125,22 +126,20 @@ PillowReport pillow(HexMesh& mesh, const stc::QuadSurface& boundary, const Pillo
     for (const stc::Hex& x : mesh.complex.hexes) {
       for (int k = 0; k < 8; ++k) {
         const auto& c = kHexCorners[static_cast<std::size_t>(k)];
-        if (!std::all_of(c.begin(), c.end(), [&](int local) {
-              const NodeId v = x[static_cast<std::size_t>(local)];
-              return v.index() < nb && shell[v.index()] >= 0;
-            }))
-          continue;
-        // Every shell holding a node of the corner (a corner can join two shells: the column
-        // hex of a cavity's cut, docs/topology.md), unless all are selected already.
-        if (std::all_of(c.begin(), c.end(), [&](int local) {
-              return selected[static_cast<std::size_t>(
-                  shell[x[static_cast<std::size_t>(local)].index()])];
-            }))
+        // The shells of the corner's four nodes (a corner can join two shells: the column hex
+        // of a cavity's cut, docs/topology.md); every one of them is selected by a bad corner.
+        std::array<std::size_t, 4> shells{};
+        bool fixed = true;
+        for (std::size_t i = 0; i < 4 && fixed; ++i) {
+          const NodeId v = x[static_cast<std::size_t>(c[i])];
+          fixed = v.index() < nb && shell[v.index()] >= 0;
+          if (fixed) shells[i] = static_cast<std::size_t>(shell[v.index()]);
+        }
+        if (!fixed ||
+            std::all_of(shells.begin(), shells.end(), [&](std::size_t s) { return selected[s]; }))
           continue;
         if (corner_scaled_jacobian(mesh.points, x, k) < options.min_fixed_corner) {
-          for (int local : c)
-            selected[static_cast<std::size_t>(shell[x[static_cast<std::size_t>(local)].index()])] =
-                true;
+          for (std::size_t s : shells) selected[s] = true;
         }
       }
     }

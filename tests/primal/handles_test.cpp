@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <set>
+#include <string>
 
+#include "stcweave/primal/cut.hpp"
 #include "stcweave/primal/diagnose.hpp"
 #include "stcweave/stc/errors.hpp"
 #include "support/shapes.hpp"
@@ -119,6 +121,20 @@ TEST(Handles, TriangularTorusIsRefusedNamingItsOddCycle) {
     EXPECT_NE(what.find("tri-torus.obj"), std::string::npos) << what;
   }
   EXPECT_EQ(to_json(d)["handles"]["all_even"], false);
+}
+
+TEST(Handles, TheCutRefusesAnOddHandleCycleNamingIt) {
+  // The pipeline refuses it in the diagnosis first; called alone, the handle route must too.
+  const SurfaceMesh torus = test::torus_surface(3, 8, 3.0, 1.0);
+  try {
+    (void)weave_solids(torus, weave::WeaveOptions{});
+    FAIL() << "expected TopologyError";
+  } catch (const TopologyError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("the cycle n"), std::string::npos) << what;
+    EXPECT_NE(what.find("(3 edges)"), std::string::npos) << what;
+    EXPECT_NE(what.find("no hex mesh with this boundary exists"), std::string::npos) << what;
+  }
 }
 
 TEST(Handles, InwardInputIsOrientedBeforeTheDiagnosis) {

@@ -257,8 +257,8 @@ std::vector<std::array<int, 3>> hollow_ring_cells() {
 }
 
 TEST(Pipeline, ACavityWithAHandleIsRefusedAsUnsupported) {
-  // Its handle classes cross the annulus joining the cavity to the outer shell twice; no set
-  // of disjoint simple cycles spans them (docs/topology.md).
+  // Its handle classes would cross the hex joining the cavity to the outer shell twice; no
+  // set of disjoint simple cycles spans them (docs/topology.md).
   const SurfaceMesh input = test::voxel_surface(hollow_ring_cells());
   const stc::SurfaceTopology topo = stc::surface_topology(input.surface);
   ASSERT_EQ(topo.components.size(), 2u);
