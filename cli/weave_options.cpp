@@ -45,6 +45,9 @@ void add_weave_options(CLI::App* sub, WeaveArgs& args) {
   off("depth-filter", p.depth_filter, "switch off the depth filter (sect. 4.1)");
   off("first-convex-filter", p.first_convex_filter,
       "switch off the first convex filter (sect. 4.2)");
+  off("first-convex-rim", p.first_convex_rim,
+      "the first convex filter drops a loop that crosses no sharp edge even when its side runs "
+      "along a sharp rim (the seed's rule; by default such a side is kept)");
   off("second-convex-filter", p.second_convex_filter,
       "switch off the second convex filter (sect. 4.3)");
   sub->add_option("--second-convex-min-weight", p.second_convex_min_weight,
@@ -100,6 +103,7 @@ nlohmann::json weave_options_json(const weave::WeaveOptions& options) {
     j["nonconvex_filter"] = p.nonconvex_filter;
     j["depth_filter"] = p.depth_filter;
     j["first_convex_filter"] = p.first_convex_filter;
+    j["first_convex_rim"] = p.first_convex_rim;
     j["second_convex_filter"] = p.second_convex_filter;
     j["second_convex_min_weight"] = p.second_convex_min_weight;
     j["second_convex_smaller_side"] = p.second_convex_smaller_side;

@@ -21,9 +21,10 @@ std::size_t hexes(const std::string& file, weave::RuleSet rules, double min_weig
   primal::MeshOptions options;
   options.weave.rules = rules;
   options.weave.extended.second_convex_min_weight = min_weight;
-  if (seed_reading) {  // the seed's second convex rule and filters, in its order
+  if (seed_reading) {  // the seed's convex rules and filters, in its order
     options.weave.extended.second_convex_smaller_side = false;
     options.weave.extended.depth_after_convex = false;
+    options.weave.extended.first_convex_rim = false;
     options.depth_filter_after_block = false;  // the depth filter from the start
   }
   options.weave.check = true;

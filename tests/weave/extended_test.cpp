@@ -329,8 +329,15 @@ TEST(ExtendedFilters, DepthActsAfterTheFirstShrink) {
 TEST(ExtendedFilters, FirstConvexRefusesALoopOnAFlatPatch) {
   // The O-grid cylinder one layer high: after two shrinks the cheapest remaining loop lies
   // on a flat patch (crosses no sharp edge); the first convex rule removes it.
+  // The seed's rule: our rim condition off in both weaves.
   const auto s = ogrid_cylinder(1);
-  const Pair p = weave_with_and_without(s, &ExtendedParameters::first_convex_filter);
+  WeaveOptions seed = extended_options();
+  seed.extended.first_convex_rim = false;
+  WeaveOptions without = seed;
+  without.extended.first_convex_filter = false;
+  const Pair p{weave_extended(s, seed), weave_extended(s, without)};
+  expect_valid(s, p.on);
+  expect_valid(s, p.off);
   const int at = first_divergence(p.on, p.off);
   ASSERT_GE(at, 0);
   const TraceEvent& on = *selections(p.on)[static_cast<std::size_t>(at)];
@@ -338,6 +345,18 @@ TEST(ExtendedFilters, FirstConvexRefusesALoopOnAFlatPatch) {
   EXPECT_TRUE(narrowed(on, "first_convex")) << describe(on);
   EXPECT_GT(chosen(on).crossed_sharp, 0u) << describe(on);
   EXPECT_EQ(chosen(off).crossed_sharp, 0u) << describe(off);
+  // With our rim condition (the default) every side the filter keeps crosses a sharp edge or
+  // runs along a sharp rim with all its side edges.
+  const WeaveResult ours = weave_extended(s, extended_options());
+  expect_valid(s, ours);
+  std::size_t kept_by_first_convex = 0;
+  for (const TraceEvent* e : selections(ours)) {
+    if (!narrowed(*e, "first_convex")) continue;
+    ++kept_by_first_convex;
+    const TraceCandidate& c = chosen(*e);
+    EXPECT_TRUE(c.crossed_sharp > 0 || c.side_sharp >= c.length) << describe(*e);
+  }
+  EXPECT_GT(kept_by_first_convex, 0u) << "the filter still narrows some selection";
 }
 
 TEST(ExtendedFilters, SecondConvexPrefersTheSharpEnd) {

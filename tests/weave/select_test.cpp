@@ -79,6 +79,31 @@ TEST(Filters, FirstConvexKeepsLoopsCrossingASharpEdgeAndMayRelax) {
   EXPECT_EQ(r.filters.front(), "first_convex:2->relaxed");
 }
 
+TEST(Filters, FirstConvexKeepsASideAlongASharpRimOnlyWithOurCondition) {
+  // Loop 1 crosses no sharp edge, but every edge along its side is sharp (the first ring of a
+  // paved face); loop 2 crosses one; loop 0 neither.
+  std::vector<TraceCandidate> all{candidate(0, 0), candidate(1, 0), candidate(2, 0)};
+  all[0].side_sharp = 3;  // 3 of 4: not the whole side
+  all[1].side_sharp = 4;
+  all[2].crossed_sharp = 1;
+  Ranking r = rank(only(first_convex_filter(true)), all);
+  EXPECT_EQ(r.filters.front(), "first_convex:3->2");
+  EXPECT_EQ(chosen_loops(r, 2), (std::vector<std::int32_t>{1, 2}));
+  r = rank(only(first_convex_filter(false)), all);
+  EXPECT_EQ(r.filters.front(), "first_convex:3->1") << "the seed's rule keeps loop 2 alone";
+  EXPECT_EQ(r.order.front().loop, 2);
+  const Selection by_default = extended_selection(ExtendedParameters{});
+  const auto first = std::find_if(by_default.filters.begin(), by_default.filters.end(),
+                                  [](const Filter& f) { return f.name == "first_convex"; });
+  ASSERT_NE(first, by_default.filters.end());
+  EXPECT_TRUE(first->keep(all[1])) << "our condition is the default";
+  ExtendedParameters seed;
+  seed.first_convex_rim = false;
+  for (const Filter& f : extended_selection(seed).filters) {
+    if (f.name == "first_convex") EXPECT_FALSE(f.keep(all[1]));
+  }
+}
+
 TEST(Filters, SecondConvexKeepsTheHighestSideEliminationWeight) {
   std::vector<TraceCandidate> all{candidate(0, 0), candidate(1, 0), candidate(2, 0)};
   all[0].side_sharp = 2;  // 2 / 4

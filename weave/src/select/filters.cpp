@@ -57,6 +57,16 @@ Filter first_convex_filter() {
   return f;
 }
 
+Filter first_convex_filter(bool rim) {
+  Filter f = first_convex_filter();
+  if (rim) {
+    f.keep = [](const TraceCandidate& c) {
+      return c.crossed_sharp > 0 || (c.length > 0 && c.side_sharp >= c.length);
+    };
+  }
+  return f;
+}
+
 Filter second_convex_filter() {
   Filter f;
   f.name = "second_convex";
@@ -113,7 +123,7 @@ Selection extended_selection(const ExtendedParameters& p) {
   if (p.parallel_crossing) s.filters.push_back(parallel_crossing_filter());
   if (p.nonconvex_filter) s.filters.push_back(nonconvex_filter());
   if (p.depth_filter && !p.depth_after_convex) s.filters.push_back(depth_filter());
-  if (p.first_convex_filter) s.filters.push_back(first_convex_filter());
+  if (p.first_convex_filter) s.filters.push_back(first_convex_filter(p.first_convex_rim));
   if (p.second_convex_filter) {
     s.filters.push_back(
         second_convex_filter(p.second_convex_min_weight, p.second_convex_smaller_side));

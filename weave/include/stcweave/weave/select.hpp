@@ -100,6 +100,11 @@ struct Selection {
 [[nodiscard]] Filter first_convex_filter();       ///< sect. 4.2: crosses a sharp edge
 [[nodiscard]] Filter second_convex_filter();      ///< sect. 4.3: highest side elimination weight
 
+/// The first convex filter with our condition when `rim` is true: a side whose every side
+/// edge is sharp convex (`side_sharp >= length`) is kept as well (ExtendedParameters::
+/// first_convex_rim). With `rim` false it is `first_convex_filter()`, the seed's rule.
+[[nodiscard]] Filter first_convex_filter(bool rim);
+
 /// The side elimination weight of `c` (sharp convex side edges / loop length, seed sect.
 /// 4.3), 0 when it is below `min_weight`, or, with `smaller_side`, when `c`'s side collapses
 /// more faces than `other`, the other side of the same loop (nullptr: not known, no test).

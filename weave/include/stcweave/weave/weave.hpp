@@ -70,6 +70,12 @@ struct ExtendedParameters {
   /// First convex rule (sect. 4.2): keep loops crossing a sharp or a little sharp edge;
   /// relaxed when it would leave no candidate.
   bool first_convex_filter = true;
+  /// First convex rule, our condition (docs/extended-rules.md, "First convex: loops along a
+  /// rim"): a side whose every side edge is sharp convex passes too, though its loop crosses
+  /// no sharp edge. Such a loop runs along a rim (the first ring of a paved face), and its
+  /// shrink lays a layer along that face, as a parallel crossing does. Default true; false
+  /// is the seed's rule (CLI `--no-first-convex-rim`).
+  bool first_convex_rim = true;
   /// Second convex rule (sect. 4.3): keep the highest side elimination weight (sharp
   /// convex edges along that side of the strip / loop length).
   bool second_convex_filter = true;
@@ -84,7 +90,7 @@ struct ExtendedParameters {
   /// than the other side of the same loop; otherwise it weighs 0. The sharp edges along a
   /// loop that circles one vertex of a triangle-split surface lie on the side that is the rest
   /// of the front, and the seed's rule would collapse it. Default true; false is the seed's
-  /// rule (CLI `--second-convex-any-side`).
+  /// rule (CLI `--no-second-convex-smaller-side`).
   bool second_convex_smaller_side = true;
   /// Order of the filters (docs/extended-rules.md, "Depth after the convex filters"): true
   /// (default) applies the depth filter after the first and second convex filters, false in
