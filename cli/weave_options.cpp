@@ -42,6 +42,9 @@ void add_weave_options(CLI::App* sub, WeaveArgs& args) {
                 "input quad; off by default, see docs/extended-rules.md)")
       ->group(group);
   off("nonconvex-filter", p.nonconvex_filter, "switch off the non-convex filter (sect. 4.4)");
+  off("nonconvex-least", p.nonconvex_least,
+      "when every side holds a non-convex edge, relax the non-convex filter entirely (by default "
+      "it keeps the sides with the fewest)");
   off("depth-filter", p.depth_filter, "switch off the depth filter (sect. 4.1)");
   off("first-convex-filter", p.first_convex_filter,
       "switch off the first convex filter (sect. 4.2)");
@@ -52,7 +55,7 @@ void add_weave_options(CLI::App* sub, WeaveArgs& args) {
       "switch off the second convex filter (sect. 4.3)");
   sub->add_option("--second-convex-min-weight", p.second_convex_min_weight,
                   "extended: a side elimination weight (sharp side edges / loop length) below this "
-                  "counts as 0 (0: the seed's rule)")
+                  "counts as 0 (0: the seed's rule; 0.1: fewer than one sharp edge in ten is a stray one)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0))
       ->group(group);
@@ -101,6 +104,7 @@ nlohmann::json weave_options_json(const weave::WeaveOptions& options) {
     j["parallel_merging"] = p.parallel_merging;
     j["nonconvexity_seam"] = p.nonconvexity_seam;
     j["nonconvex_filter"] = p.nonconvex_filter;
+    j["nonconvex_least"] = p.nonconvex_least;
     j["depth_filter"] = p.depth_filter;
     j["first_convex_filter"] = p.first_convex_filter;
     j["first_convex_rim"] = p.first_convex_rim;

@@ -51,7 +51,7 @@ TEST_P(SecondConvexCorpus, TransfiniteInputsStayStructured) {
   EXPECT_EQ(hexes("sphere_tf_coarse.obj", weave::RuleSet::Extended, w), 125u);
 }
 
-INSTANTIATE_TEST_SUITE_P(SeedAndThreshold, SecondConvexCorpus, ::testing::Values(0.0, 0.75));
+INSTANTIATE_TEST_SUITE_P(SeedAndThreshold, SecondConvexCorpus, ::testing::Values(0.0, 0.1, 0.75));
 
 TEST(SecondConvexCorpusBlowUp, TriangleSplitCylinder) {
   if (!fs::exists(kGmsh)) GTEST_SKIP() << "shared data not found at " << STCWEAVE_SHARED_DATA;

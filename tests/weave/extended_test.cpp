@@ -85,6 +85,7 @@ bool narrowed(const TraceEvent& e, const std::string& filter) {
   const std::string before = f.substr(filter.size() + 1, arrow - filter.size() - 1);
   const std::string after = f.substr(arrow + 2);
   if (after == "relaxed") return false;
+  if (after.rfind("least:", 0) == 0) return std::stoul(after.substr(6)) < std::stoul(before);
   return std::stoul(after) < std::stoul(before);
 }
 
@@ -437,19 +438,38 @@ TEST(ExtendedFilters, FirstConvexIsRelaxedWhenNoLoopCrossesASharpEdge) {
 
 TEST(ExtendedFilters, NonConvexIsRelaxedWhenEverySideHasANonConvexEdge) {
   // With flat below 90 degrees every box edge counts as non-convex: the rule would leave no
-  // candidate, so it is relaxed (the seed stops there) and the weave completes.
+  // candidate. Ours keeps the sides with the fewest (`nonconvex_least`, the default); without
+  // it the rule is relaxed entirely (the seed stops there). Both weaves complete.
   WeaveOptions o = extended_options();
   o.extended.sharp = 20;
   o.extended.little_sharp = 40;
   o.extended.flat = 60;
   o.extended.little_sharp_nonconvex = 80;
   const auto s = test::box_surface(2, 2, 2);
-  const WeaveResult r = weave_extended(s, o);
+  WeaveOptions all = o;
+  all.extended.nonconvex_least = false;
+  const WeaveResult r = weave_extended(s, all);
   EXPECT_EQ(r.complex.hexes.size(), 8u);
   expect_valid(s, r);
   const TraceEvent& first = *selections(r).at(0);
   EXPECT_NE(filter_entry(first, "nonconvex").find("->relaxed"), std::string::npos)
       << describe(first);
+
+  const WeaveResult least = weave_extended(s, o);
+  EXPECT_EQ(least.complex.hexes.size(), 8u);
+  expect_valid(s, least);
+  const TraceEvent& one = *selections(least).at(0);
+  EXPECT_NE(filter_entry(one, "nonconvex").find("->least:"), std::string::npos) << describe(one);
+  // The chosen side holds no more non-convex edges than any other candidate.
+  for (const TraceCandidate& c : one.candidates)
+    EXPECT_LE(chosen(one).nonconvex_on_side, c.nonconvex_on_side) << describe(one);
+  // Without an observer the driver computes side properties only where a filter reads them
+  // (select/candidates.hpp): the relaxation must get exact counts there too (`check` compares
+  // that ranking's choice with the full one at every selection).
+  WeaveOptions quiet = o;
+  quiet.trace = false;
+  const WeaveResult q = weave_extended(s, quiet);
+  EXPECT_EQ(q.complex.hexes, least.complex.hexes);
 }
 
 // ---------------------------------------------------------------------------------------

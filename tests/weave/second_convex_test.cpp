@@ -50,6 +50,22 @@ TEST(SecondConvexThreshold, ASideAlongARimStillWins) {
   EXPECT_EQ(r.decided_by, "second_convex");
 }
 
+TEST(SecondConvexThreshold, TheDefaultDropsFewerThanOneSharpEdgeInTen) {
+  // The kitty's cut ball: sides with 3 sharp edges along a loop of 40 (weight 0.075) won
+  // the seed's rule over the cheaper sides with none. By default they weigh 0; 3 of 10 counts.
+  const ExtendedParameters defaults;
+  EXPECT_DOUBLE_EQ(defaults.second_convex_min_weight, 0.1);
+  const Filter f =
+      second_convex_filter(defaults.second_convex_min_weight, defaults.second_convex_smaller_side);
+  const std::vector<TraceCandidate> stray{candidate(0, 0, 40), candidate(1, 3, 40)};
+  EXPECT_EQ(rank(only(f), stray).filters.front(), "second_convex:2->2");
+  EXPECT_EQ(rank(only(second_convex_filter()), stray).filters.front(), "second_convex:2->1");
+  const std::vector<TraceCandidate> counts{candidate(0, 0, 10), candidate(1, 3, 10)};
+  const Ranking r = rank(only(f), counts);
+  EXPECT_EQ(r.filters.front(), "second_convex:2->1");
+  EXPECT_EQ(r.order.front().loop, 1);
+}
+
 TEST(SecondConvexThreshold, OutOfRangeIsRefused) {
   const auto box = test::box_surface(1, 1, 1);
   WeaveOptions o;
@@ -80,7 +96,7 @@ TEST_P(SecondConvexBoxes, GiveTheStructuredMesh) {
 
 INSTANTIATE_TEST_SUITE_P(
     SeedAndThreshold, SecondConvexBoxes,
-    ::testing::Combine(::testing::Values(0.0, 0.75),
+    ::testing::Combine(::testing::Values(0.0, 0.1, 0.75),
                        ::testing::Values(std::make_tuple(1, 1, 1), std::make_tuple(2, 2, 2),
                                          std::make_tuple(3, 3, 3), std::make_tuple(2, 3, 4),
                                          std::make_tuple(4, 2, 1), std::make_tuple(5, 1, 1),

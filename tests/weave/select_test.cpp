@@ -56,6 +56,35 @@ TEST(Filters, NonConvexIsRelaxedWhenNoneWouldBeLeft) {
   EXPECT_EQ(r.decided_by, "topological");
 }
 
+TEST(Filters, NonConvexKeepsTheFewestWhenEverySideHasOneWithOurRelaxation) {
+  std::vector<TraceCandidate> all{candidate(0, 0), candidate(1, 0), candidate(2, 0),
+                                  candidate(3, 0)};
+  all[0].nonconvex_on_side = 3;
+  all[1].nonconvex_on_side = 1;
+  all[2].nonconvex_on_side = 2;
+  all[3].nonconvex_on_side = 1;
+  Ranking r = rank(only(nonconvex_filter(true)), all);
+  EXPECT_EQ(r.filters.front(), "nonconvex:4->least:2");
+  EXPECT_EQ(chosen_loops(r, 2), (std::vector<std::int32_t>{1, 3}));
+  r = rank(only(nonconvex_filter(false)), all);
+  EXPECT_EQ(r.filters.front(), "nonconvex:4->relaxed") << "the relaxation of before";
+  all[2].nonconvex_on_side = 0;
+  r = rank(only(nonconvex_filter(true)), all);
+  EXPECT_EQ(r.filters.front(), "nonconvex:4->1") << "a side without any: the seed's rule";
+  EXPECT_EQ(r.order.front().loop, 2);
+  EXPECT_EQ(r.decided_by, "nonconvex");
+  // The default list has the relaxation; `nonconvex_least = false` removes it.
+  const auto nonconvex_of = [](const ExtendedParameters& p) {
+    for (const Filter& f : extended_selection(p).filters)
+      if (f.name == "nonconvex") return f;
+    return Filter{};
+  };
+  EXPECT_TRUE(static_cast<bool>(nonconvex_of(ExtendedParameters{}).relax_cost));
+  ExtendedParameters p;
+  p.nonconvex_least = false;
+  EXPECT_FALSE(static_cast<bool>(nonconvex_of(p).relax_cost));
+}
+
 TEST(Filters, DepthKeepsTheLeastDepth) {
   std::vector<TraceCandidate> all{candidate(0, 0), candidate(1, 0), candidate(2, 0)};
   all[0].depth = 3;

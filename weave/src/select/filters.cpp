@@ -39,6 +39,17 @@ Filter nonconvex_filter() {
   return f;
 }
 
+Filter nonconvex_filter(bool least) {
+  Filter f = nonconvex_filter();
+  if (least) {
+    f.relax_cost = [](const TraceCandidate& c) { return static_cast<double>(c.nonconvex_on_side); };
+    f.relax_reads = [](const TraceCandidate& /*c*/) {
+      return side_property::kNonconvex | side_property::kNonconvexCount;
+    };
+  }
+  return f;
+}
+
 Filter depth_filter() {
   Filter f;
   f.name = "depth";
@@ -121,7 +132,7 @@ Selection extended_selection(const ExtendedParameters& p) {
     return a.weight < b.weight;
   };
   if (p.parallel_crossing) s.filters.push_back(parallel_crossing_filter());
-  if (p.nonconvex_filter) s.filters.push_back(nonconvex_filter());
+  if (p.nonconvex_filter) s.filters.push_back(nonconvex_filter(p.nonconvex_least));
   if (p.depth_filter && !p.depth_after_convex) s.filters.push_back(depth_filter());
   if (p.first_convex_filter) s.filters.push_back(first_convex_filter(p.first_convex_rim));
   if (p.second_convex_filter) {
@@ -206,6 +217,25 @@ Filtered filter_candidates(
     } else {
       for (const std::size_t i : set)
         if (filter.keep(all[i])) kept.push_back(i);
+      if (kept.empty() && !set.empty() && filter.relax_cost && filter.kind == Filter::Kind::Keep) {
+        Filter least;  // what the relaxation reads, for `ready`
+        least.name = filter.name;
+        least.reads = filter.relax_reads;
+        if (ready) ready(set, &least);
+        double fewest = 0.0;
+        bool first = true;
+        for (const std::size_t i : set) {
+          const double x = filter.relax_cost(all[i]);
+          if (first || x < fewest) fewest = x;
+          first = false;
+        }
+        for (const std::size_t i : set)
+          if (filter.relax_cost(all[i]) <= fewest + 1e-12) kept.push_back(i);
+        set = std::move(kept);
+        note(filter.name + ":" + std::to_string(before) + "->least:" + std::to_string(set.size()));
+        if (set.size() == 1 && out.decided_by.empty()) out.decided_by = filter.name;
+        continue;
+      }
     }
     if (filter.kind == Filter::Kind::Decide) {
       note(filter.name + ":" + std::to_string(kept.size()));

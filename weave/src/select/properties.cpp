@@ -743,7 +743,8 @@ CandidateSet::CandidateSet(const Front& front, const FrontLoops& loops,
     const std::size_t comp =
         components.component_of[front.face(face_of(strip.front())).nodes[0].index()];
     // No non-convex edge in the component: no side of its loops holds one.
-    if (totals_.nonconvex[comp] == 0) known_[l] = side_property::kNonconvex;
+    if (totals_.nonconvex[comp] == 0)
+      known_[l] = side_property::kNonconvex | side_property::kNonconvexCount;
     for (std::size_t d = 0; d < 2; ++d) {
       TraceCandidate& c = all_[2 * l + d];
       c.loop = static_cast<std::int32_t>(l);

@@ -30,7 +30,9 @@ inline constexpr unsigned kFaces = 1U;      ///< faces_collapsed
 inline constexpr unsigned kDepth = 2U;      ///< depth
 inline constexpr unsigned kNonconvex = 4U;  ///< nonconvex_on_side
 inline constexpr unsigned kWeight = 8U;     ///< strictly_on_side, on_strip, weight
-inline constexpr unsigned kAll = kFaces | kDepth | kNonconvex | kWeight;
+/// nonconvex_on_side as a count; `kNonconvex` alone may leave it as 1 for "at least one"
+inline constexpr unsigned kNonconvexCount = 16U;
+inline constexpr unsigned kAll = kFaces | kDepth | kNonconvex | kWeight | kNonconvexCount;
 }  // namespace side_property
 
 /// One filter of Fig. 15.
@@ -54,6 +56,11 @@ struct Filter {
   double slack = 1e-12;  ///< Least
   /// When it would leave no candidate it is skipped for this selection (traced "relaxed").
   bool may_relax = false;
+  /// Keep: when `keep` would leave no candidate and this is set, the candidates of least
+  /// `relax_cost` are kept instead (traced "name:N->least:M"), before `may_relax` is looked
+  /// at; `relax_reads` gives the `side_property` bits it reads (unset: all of them).
+  std::function<double(const TraceCandidate&)> relax_cost;
+  std::function<unsigned(const TraceCandidate&)> relax_reads;
   /// Decide: the reason traced, given the candidates it kept.
   std::function<std::string(const std::vector<TraceCandidate>&)> reason;
   /// The `side_property` bits its verdict on a candidate may read, of the candidate or of the
@@ -99,6 +106,12 @@ struct Selection {
 [[nodiscard]] Filter depth_filter();              ///< sect. 4.1: least depth
 [[nodiscard]] Filter first_convex_filter();       ///< sect. 4.2: crosses a sharp edge
 [[nodiscard]] Filter second_convex_filter();      ///< sect. 4.3: highest side elimination weight
+
+/// The non-convex filter with our relaxation when `least` is true: when every side has a
+/// non-convex edge, the sides with the fewest are kept (`Filter::relax_cost`), instead of
+/// all of them (ExtendedParameters::nonconvex_least). With `least` false it is
+/// `nonconvex_filter()`.
+[[nodiscard]] Filter nonconvex_filter(bool least);
 
 /// The first convex filter with our condition when `rim` is true: a side whose every side
 /// edge is sharp convex (`side_sharp >= length`) is kept as well (ExtendedParameters::
