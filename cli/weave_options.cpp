@@ -53,9 +53,10 @@ void add_weave_options(CLI::App* sub, WeaveArgs& args) {
       "along a sharp rim (the seed's rule; by default such a side is kept)");
   off("second-convex-filter", p.second_convex_filter,
       "switch off the second convex filter (sect. 4.3)");
-  sub->add_option("--second-convex-min-weight", p.second_convex_min_weight,
-                  "extended: a side elimination weight (sharp side edges / loop length) below this "
-                  "counts as 0 (0: the seed's rule; 0.1: fewer than one sharp edge in ten is a stray one)")
+  sub->add_option(
+         "--second-convex-min-weight", p.second_convex_min_weight,
+         "extended: a side elimination weight (sharp side edges / loop length) below this "
+         "counts as 0 (0: the seed's rule; 0.1: fewer than one sharp edge in ten is a stray one)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0))
       ->group(group);

@@ -118,6 +118,37 @@ TEST(Candidates, FirstOfRankFirstIsFirstOfRankOnInputFronts) {
   EXPECT_GT(incomplete, 0U) << "every loop was flooded: nothing was saved";
 }
 
+TEST(Candidates, TheNonConvexRelaxationComparesExactCountsOnInputFronts) {
+  // Every edge non-convex (flat below 90 degrees): no side is free of them, and the
+  // non-convex filter keeps the sides with the fewest. The side parities only know "at least
+  // one", so rank_first must flood those sides before it compares; `compare_on` checks that
+  // its choice, reason and filters are rank's.
+  ExtendedParameters par;
+  par.sharp = 20;
+  par.little_sharp = 40;
+  par.flat = 60;
+  par.little_sharp_nonconvex = 80;
+  const Selection selection = extended_selection(par);
+  std::size_t relaxed_to_least = 0;
+  for (const Shape& s : shapes()) {
+    WeaveOptions options;
+    options.rules = RuleSet::Extended;
+    options.extended = par;
+    const WeaveState state =
+        initial_state(s.mesh.surface, options, primal::dihedral_angles(s.mesh));
+    (void)compare_on(state, selection, par, s.name);
+    Marks nodes, faces, faces2;
+    const FrontLoops loops = front_loops(state.front);
+    const FrontComponents components = front_components(state.front, nodes);
+    const Ranking full = rank(selection, loop_candidates(state.front, loops, components, true, par,
+                                                         nodes, faces, faces2));
+    for (const std::string& f : full.filters)
+      if (f.rfind("nonconvex:", 0) == 0 && f.find("->least:") != std::string::npos)
+        ++relaxed_to_least;
+  }
+  EXPECT_GT(relaxed_to_least, 0U) << "the relaxation never ran: the test shows nothing";
+}
+
 TEST(Candidates, AFilterThatDeclaresNothingSeesEveryCandidateComplete) {
   // A user's filter without `reads` may read anything: every candidate it sees is completed
   // first, and the choice is rank's.

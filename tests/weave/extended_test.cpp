@@ -351,13 +351,16 @@ TEST(ExtendedFilters, FirstConvexRefusesALoopOnAFlatPatch) {
   const WeaveResult ours = weave_extended(s, extended_options());
   expect_valid(s, ours);
   std::size_t kept_by_first_convex = 0;
+  std::size_t along_a_rim = 0;  // chosen sides crossing no sharp edge, all side edges sharp
   for (const TraceEvent* e : selections(ours)) {
+    const TraceCandidate& c = chosen(*e);
+    if (c.crossed_sharp == 0 && c.length > 0 && c.side_sharp >= c.length) ++along_a_rim;
     if (!narrowed(*e, "first_convex")) continue;
     ++kept_by_first_convex;
-    const TraceCandidate& c = chosen(*e);
     EXPECT_TRUE(c.crossed_sharp > 0 || c.side_sharp >= c.length) << describe(*e);
   }
   EXPECT_GT(kept_by_first_convex, 0u) << "the filter still narrows some selection";
+  EXPECT_GT(along_a_rim, 0u) << "no side along a rim was chosen: the condition changed nothing";
 }
 
 TEST(ExtendedFilters, SecondConvexPrefersTheSharpEnd) {
@@ -468,6 +471,7 @@ TEST(ExtendedFilters, NonConvexIsRelaxedWhenEverySideHasANonConvexEdge) {
   // that ranking's choice with the full one at every selection).
   WeaveOptions quiet = o;
   quiet.trace = false;
+  quiet.check = true;  // the assertion: InternalError if the lazy ranking's choice differs
   const WeaveResult q = weave_extended(s, quiet);
   EXPECT_EQ(q.complex.hexes, least.complex.hexes);
 }

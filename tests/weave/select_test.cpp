@@ -73,6 +73,12 @@ TEST(Filters, NonConvexKeepsTheFewestWhenEverySideHasOneWithOurRelaxation) {
   EXPECT_EQ(r.filters.front(), "nonconvex:4->1") << "a side without any: the seed's rule";
   EXPECT_EQ(r.order.front().loop, 2);
   EXPECT_EQ(r.decided_by, "nonconvex");
+  all[2].nonconvex_on_side = 2;
+  all[3].nonconvex_on_side = 4;
+  r = rank(only(nonconvex_filter(true)), all);
+  EXPECT_EQ(r.filters.front(), "nonconvex:4->least:1");
+  EXPECT_EQ(r.order.front().loop, 1);
+  EXPECT_EQ(r.decided_by, "nonconvex") << "one left by the relaxation: it decided";
   // The default list has the relaxation; `nonconvex_least = false` removes it.
   const auto nonconvex_of = [](const ExtendedParameters& p) {
     for (const Filter& f : extended_selection(p).filters)
@@ -128,9 +134,11 @@ TEST(Filters, FirstConvexKeepsASideAlongASharpRimOnlyWithOurCondition) {
   EXPECT_TRUE(first->keep(all[1])) << "our condition is the default";
   ExtendedParameters seed;
   seed.first_convex_rim = false;
-  for (const Filter& f : extended_selection(seed).filters) {
-    if (f.name == "first_convex") EXPECT_FALSE(f.keep(all[1]));
-  }
+  const Selection seeds = extended_selection(seed);
+  const auto seed_first = std::find_if(seeds.filters.begin(), seeds.filters.end(),
+                                       [](const Filter& f) { return f.name == "first_convex"; });
+  ASSERT_NE(seed_first, seeds.filters.end());
+  EXPECT_FALSE(seed_first->keep(all[1]));
 }
 
 TEST(Filters, SecondConvexKeepsTheHighestSideEliminationWeight) {

@@ -230,8 +230,8 @@ Filtered filter_candidates(
           first = false;
         }
         for (const std::size_t i : set)
-          if (filter.relax_cost(all[i]) <= fewest + 1e-12) kept.push_back(i);
-        set = std::move(kept);
+          if (filter.relax_cost(all[i]) <= fewest + filter.slack) kept.push_back(i);
+        if (!kept.empty()) set = std::move(kept);  // a cost that is NaN everywhere keeps all
         note(filter.name + ":" + std::to_string(before) + "->least:" + std::to_string(set.size()));
         if (set.size() == 1 && out.decided_by.empty()) out.decided_by = filter.name;
         continue;

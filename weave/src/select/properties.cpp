@@ -743,6 +743,8 @@ CandidateSet::CandidateSet(const Front& front, const FrontLoops& loops,
     const std::size_t comp =
         components.component_of[front.face(face_of(strip.front())).nodes[0].index()];
     // No non-convex edge in the component: no side of its loops holds one.
+    // No non-convex edge in the component: 0 is the exact count (the only place, besides a
+    // flood, that sets `kNonconvexCount`).
     if (totals_.nonconvex[comp] == 0)
       known_[l] = side_property::kNonconvex | side_property::kNonconvexCount;
     for (std::size_t d = 0; d < 2; ++d) {
@@ -760,7 +762,8 @@ CandidateSet::CandidateSet(const Front& front, const FrontLoops& loops,
     }
   }
   // Where a component has non-convex edges, which sides hold one, for every loop at once
-  // (select/side_parity.hpp): the non-convex filter reads only that, so it floods no side.
+  // (select/side_parity.hpp): the non-convex filter reads only that, so it floods no side
+  // (its relaxation to the fewest reads `kNonconvexCount`, which only a flood gives here).
   if (std::all_of(totals_.nonconvex.begin(), totals_.nonconvex.end(),
                   [](std::size_t k) { return k == 0; }))
     return;
@@ -771,6 +774,8 @@ CandidateSet::CandidateSet(const Front& front, const FrontLoops& loops,
     known_[l] |= side_property::kNonconvex;
     by_parity_[l] = 1;
     // 1 stands for "at least one" until the loop is completed: the filter reads only != 0.
+    // So `kNonconvexCount` is not set: only a flood (or a component without any non-convex
+    // edge, above, where 0 is exact) may set it.
     for (std::size_t d = 0; d < 2; ++d)
       all_[2 * l + d].nonconvex_on_side = parity.has[l][d] != 0 ? 1 : 0;
   }

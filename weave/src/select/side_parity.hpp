@@ -6,7 +6,8 @@
 /// non-convex edge. Counting those edges takes a flood of the side, and the filter comes
 /// first, so on a surface with non-convex edges every loop's floods were paid at every
 /// selection (`cfip2016_KPDloekr-hex`: 1,122 loops and 13,428 faces, 83 s of weave for 3 s
-/// under `reliable`). The filter reads only whether the count is 0.
+/// under `reliable`). The filter reads only whether the count is 0; its relaxation to the
+/// fewest (`nonconvex_least`), when no side has 0, reads the counts and floods those sides.
 ///
 /// How: on a front component that is a sphere (nodes - faces = 2), a loop that does not
 /// cross itself is a simple closed curve (Jordan), and a node's side is the parity of the

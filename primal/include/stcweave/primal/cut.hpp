@@ -32,7 +32,10 @@ struct CutOptions {
   /// front with depth 0 like the solid's boundary, so the filter peels layers off the discs
   /// too; measured, it made the cinolib rocker arm 14,148 hexes with min scaled Jacobian
   /// 0.143, against 9,888 and 0.568 without it (docs/extended-rules.md, "The depth filter in
-  /// cut balls"). An uncut solid keeps `weave::ExtendedParameters::depth_filter`.
+  /// cut balls"). Measured before the non-convex filter kept the sides with the fewest
+  /// non-convex edges (`nonconvex_least`); with it the rocker arm's woven hexes hardly depend
+  /// on this (5,140 without, 5,164 with). An uncut solid keeps
+  /// `weave::ExtendedParameters::depth_filter`.
   bool ball_depth_filter = false;
   /// Disc choices woven per handle before giving up (choices whose cut has a
   /// self-intersecting loop are discarded without weaving and not counted).

@@ -53,12 +53,13 @@ struct Filter {
   /// Least: used instead of `cost` when set; also reads the candidate for the other side of
   /// the same loop (nullptr when that one is not among the candidates ranked).
   std::function<double(const TraceCandidate&, const TraceCandidate*)> cost_with_other;
-  double slack = 1e-12;  ///< Least
+  double slack = 1e-12;  ///< Least, and a Keep filter's `relax_cost`
   /// When it would leave no candidate it is skipped for this selection (traced "relaxed").
   bool may_relax = false;
   /// Keep: when `keep` would leave no candidate and this is set, the candidates of least
-  /// `relax_cost` are kept instead (traced "name:N->least:M"), before `may_relax` is looked
-  /// at; `relax_reads` gives the `side_property` bits it reads (unset: all of them).
+  /// `relax_cost` (within `slack`) are kept instead (traced "name:N->least:M"), and
+  /// `may_relax` is then never used; `relax_reads` gives the `side_property` bits it reads
+  /// (unset: all of them). Ignored on Least and Decide filters.
   std::function<double(const TraceCandidate&)> relax_cost;
   std::function<unsigned(const TraceCandidate&)> relax_reads;
   /// Decide: the reason traced, given the candidates it kept.
@@ -91,7 +92,9 @@ struct Selection {
 [[nodiscard]] Selection reliable_selection();
 
 /// The seed's Fig. 15 with the switches of `parameters`: parallel crossing (decides), then
-/// the non-convex (may relax), first convex (may relax), second convex and depth filters
+/// the non-convex (the fewest when none is free of them, `nonconvex_least`; else may relax),
+/// first convex (with the rim condition, `first_convex_rim`; may relax), second convex
+/// (threshold `second_convex_min_weight`, the smaller side) and depth filters
 /// (depth before the convex filters, the seed's order, when `depth_after_convex` is false);
 /// among those left, the fewest faces collapsed, then the smaller weight.
 /// \cite seed sect. 4.1-4.5, 7.
@@ -100,7 +103,8 @@ struct Selection {
 /// The selection `options` asks for: `options.selection` when set, else the rule set's.
 [[nodiscard]] Selection selection_for(const WeaveOptions& options);
 
-// The filters of Fig. 15, each a named value (`extended_selection` lists them in order).
+// The filters of Fig. 15 as the seed gives them, each a named value; `extended_selection`
+// lists the variants below them, with our conditions as `ExtendedParameters` sets them.
 [[nodiscard]] Filter parallel_crossing_filter();  ///< sect. 4.5: runs along another loop
 [[nodiscard]] Filter nonconvex_filter();          ///< sect. 4.4: no non-convex edge that side
 [[nodiscard]] Filter depth_filter();              ///< sect. 4.1: least depth

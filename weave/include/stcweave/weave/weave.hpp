@@ -63,7 +63,8 @@ struct ExtendedParameters {
   /// along one other loop of the same length is shrunk toward it first.
   bool parallel_crossing = true;
   /// Non-convex rule (sect. 4.4): never shrink toward a side holding a non-convex edge.
-  /// When it would leave no candidate it is relaxed (the seed stops there; we go on).
+  /// When it would leave no candidate the seed stops; we keep the sides with the fewest
+  /// (`nonconvex_least`) or, without that, relax the filter for that selection.
   bool nonconvex_filter = true;
   /// Non-convex rule, our relaxation (docs/extended-rules.md, "Non-convex: the fewest
   /// non-convex edges"): when every side holds a non-convex edge, keep the sides holding the
@@ -239,7 +240,8 @@ struct TraceEvent {
   std::int32_t chosen = -1;
   std::string reason;  ///< why this candidate (or why the shrink failed)
   /// Selection: the filters applied in order, each with the candidates it left
-  /// ("nonconvex:12", "depth:4", ...; "relaxed" when a filter would have left none).
+  /// ("nonconvex:12", "depth:4", ...; "relaxed" when a filter would have left none and was
+  /// skipped, "least:M" when it kept the M candidates of least `Filter::relax_cost` instead).
   std::vector<std::string> filters;
   /// Selection: what decided the choice: "weight" (reliable), "parallel_crossing", the first
   /// filter after which one candidate was left, "topological" (fewest faces collapsed among
