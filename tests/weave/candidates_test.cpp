@@ -81,9 +81,10 @@ void expect_same_candidate(const TraceCandidate& a, const TraceCandidate& b,
 }
 
 /// `rank_first` on the front of `state` against `rank` of every candidate; the number of
-/// loops left incomplete.
+/// loops left incomplete. `full_out`, when given, receives `rank`'s ranking.
 std::size_t compare_on(const WeaveState& state, const Selection& selection,
-                       const ExtendedParameters& par, const std::string& where) {
+                       const ExtendedParameters& par, const std::string& where,
+                       Ranking* full_out = nullptr) {
   Marks nodes, faces, faces2;
   const FrontLoops loops = front_loops(state.front);
   const FrontComponents components = front_components(state.front, nodes);
@@ -91,6 +92,7 @@ std::size_t compare_on(const WeaveState& state, const Selection& selection,
       selection, loop_candidates(state.front, loops, components, true, par, nodes, faces, faces2));
   CandidateSet set(state.front, loops, components, par, nodes, faces, faces2, /*check=*/true);
   const Ranking first = rank_first(selection, set);
+  if (full_out != nullptr) *full_out = full;
   EXPECT_EQ(first.order.size(), full.order.size()) << where;
   if (first.order.empty() || full.order.empty()) return 0;
   expect_same_candidate(first.order.front(), full.order.front(), where);
@@ -136,12 +138,8 @@ TEST(Candidates, TheNonConvexRelaxationComparesExactCountsOnInputFronts) {
     options.extended = par;
     const WeaveState state =
         initial_state(s.mesh.surface, options, primal::dihedral_angles(s.mesh));
-    (void)compare_on(state, selection, par, s.name);
-    Marks nodes, faces, faces2;
-    const FrontLoops loops = front_loops(state.front);
-    const FrontComponents components = front_components(state.front, nodes);
-    const Ranking full = rank(selection, loop_candidates(state.front, loops, components, true, par,
-                                                         nodes, faces, faces2));
+    Ranking full;
+    (void)compare_on(state, selection, par, s.name, &full);
     for (const std::string& f : full.filters)
       if (f.rfind("nonconvex:", 0) == 0 && f.find("->least:") != std::string::npos)
         ++relaxed_to_least;

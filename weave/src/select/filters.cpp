@@ -196,24 +196,32 @@ Filtered filter_candidates(
   const auto note = [&](const std::string& entry) {
     if (selection.list_filters) out.filters.push_back(entry);
   };
+  // The candidates of `set` whose cost is at most the least one plus `slack`.
+  const auto least_of = [&](const auto& cost, double slack) {
+    std::vector<std::size_t> kept;
+    double least = 0.0;
+    bool first = true;
+    for (const std::size_t i : set) {
+      const double x = cost(all[i]);
+      if (first || x < least) least = x;
+      first = false;
+    }
+    for (const std::size_t i : set)
+      if (cost(all[i]) <= least + slack) kept.push_back(i);
+    return kept;
+  };
   const Filter* decider = nullptr;
   for (const Filter& filter : selection.filters) {
     if (ready) ready(set, &filter);
     const std::size_t before = set.size();
     std::vector<std::size_t> kept;
     if (filter.kind == Filter::Kind::Least) {
-      const auto cost = [&](const TraceCandidate& c) {
-        return filter.cost_with_other ? filter.cost_with_other(c, other_side(c)) : filter.cost(c);
-      };
-      double least = 0.0;
-      bool first = true;
-      for (const std::size_t i : set) {
-        const double x = cost(all[i]);
-        if (first || x < least) least = x;
-        first = false;
-      }
-      for (const std::size_t i : set)
-        if (cost(all[i]) <= least + filter.slack) kept.push_back(i);
+      kept = least_of(
+          [&](const TraceCandidate& c) {
+            return filter.cost_with_other ? filter.cost_with_other(c, other_side(c))
+                                          : filter.cost(c);
+          },
+          filter.slack);
     } else {
       for (const std::size_t i : set)
         if (filter.keep(all[i])) kept.push_back(i);
@@ -222,15 +230,7 @@ Filtered filter_candidates(
         least.name = filter.name;
         least.reads = filter.relax_reads;
         if (ready) ready(set, &least);
-        double fewest = 0.0;
-        bool first = true;
-        for (const std::size_t i : set) {
-          const double x = filter.relax_cost(all[i]);
-          if (first || x < fewest) fewest = x;
-          first = false;
-        }
-        for (const std::size_t i : set)
-          if (filter.relax_cost(all[i]) <= fewest + filter.slack) kept.push_back(i);
+        kept = least_of(filter.relax_cost, filter.slack);
         if (!kept.empty()) set = std::move(kept);  // a cost that is NaN everywhere keeps all
         note(filter.name + ":" + std::to_string(before) + "->least:" + std::to_string(set.size()));
         if (set.size() == 1 && out.decided_by.empty()) out.decided_by = filter.name;

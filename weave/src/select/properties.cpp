@@ -742,9 +742,8 @@ CandidateSet::CandidateSet(const Front& front, const FrontLoops& loops,
     const StripEdges edges = count_strip_edges(table_, strip, parameters);
     const std::size_t comp =
         components.component_of[front.face(face_of(strip.front())).nodes[0].index()];
-    // No non-convex edge in the component: no side of its loops holds one.
-    // No non-convex edge in the component: 0 is the exact count (the only place, besides a
-    // flood, that sets `kNonconvexCount`).
+    // No non-convex edge in the component: no side of its loops holds one, and 0 is the
+    // exact count (the only place, besides a flood, that sets `kNonconvexCount`).
     if (totals_.nonconvex[comp] == 0)
       known_[l] = side_property::kNonconvex | side_property::kNonconvexCount;
     for (std::size_t d = 0; d < 2; ++d) {
