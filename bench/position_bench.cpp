@@ -1,9 +1,11 @@
 // Positioning time against mesh size (Google Benchmark; timings live here, never in tests).
 //
-// - BM_PositionScrambledBox/n: the n^3 structured box with every interior node moved by a
+// - BM_PositionScrambledBox/n/precondition: the n^3 structured box with every interior node moved by a
 //   seeded random vector of up to half its shortest edge (n = 10, 22, 46: about 1k, 10k and
 //   100k hexes). Target: 100k hexes in under 10 s on the 2-core development machine.
-// - BM_PositionBentBox/n/newton_after: the n^3 box bent into a 270-degree C, interior from
+//   precondition 1 is the default L-BFGS with the multigrid Laplacian preconditioner, 0 the
+//   plain L-BFGS (docs/geometry.md, "Preconditioned L-BFGS"); the same in BM_PositionBentBox.
+// - BM_PositionBentBox/n/newton_after/precondition: the n^3 box bent into a 270-degree C, interior from
 //   the harmonic map of the bent boundary (tangled: research/geometry.md §3.3), a harder
 //   case; newton_after 0 is L-BFGS alone, 100 adds projected Newton steps to slow rounds
 //   (n = 20 with Newton takes about nine minutes: not run by default, docs/geometry.md).
@@ -51,12 +53,12 @@ void BM_PositionScrambledBox(benchmark::State& state) {
   primal::PositionOptions options;
   options.fixed = test::boundary_nodes(start);
   test::scramble(start, options.fixed, 0.5, 1);
+  options.precondition = state.range(1) != 0;
   measure(state, start, options);
 }
 BENCHMARK(BM_PositionScrambledBox)
-    ->Arg(10)
-    ->Arg(22)
-    ->Arg(46)
+    ->ArgNames({"n", "precondition"})
+    ->ArgsProduct({{10, 22, 46}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 
@@ -68,16 +70,21 @@ void BM_PositionBentBox(benchmark::State& state) {
   options.num_fixed = test::boundary_first(start);
   options.start = primal::StartPosition::Harmonic;
   options.newton_after = static_cast<int>(state.range(1));
+  options.precondition = state.range(2) != 0;
   measure(state, start, options);
 }
 BENCHMARK(BM_PositionBentBox)
-    ->ArgNames({"n", "newton_after"})
-    ->Args({6, 0})
-    ->Args({12, 0})
-    ->Args({20, 0})
-    ->Args({32, 0})
-    ->Args({6, 100})
-    ->Args({12, 100})
+    ->ArgNames({"n", "newton_after", "precondition"})
+    ->Args({6, 0, 0})
+    ->Args({6, 0, 1})
+    ->Args({12, 0, 0})
+    ->Args({12, 0, 1})
+    ->Args({20, 0, 0})
+    ->Args({20, 0, 1})
+    ->Args({32, 0, 0})
+    ->Args({32, 0, 1})
+    ->Args({6, 100, 0})
+    ->Args({12, 100, 0})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 

@@ -45,6 +45,7 @@ struct MeshArgs {
   int position_rounds = 100;
   int position_iterations = 3000;
   int position_newton_after = primal::PositionOptions{}.newton_after;
+  bool position_precondition = primal::PositionOptions{}.precondition;
   int position_newton_steps = primal::PositionOptions{}.max_newton_steps;
   double position_theta = 0.5;
   int shape_sweeps = primal::PositionOptions{}.max_shape_sweeps;
@@ -245,6 +246,7 @@ int run_mesh(const MeshArgs& a) {
   options.position.shape_target = a.shape_target;
   options.position.good_start = a.good_start;
   options.position.newton_after = a.position_newton_after;
+  options.position.precondition = a.position_precondition;
   options.position.max_newton_steps = a.position_newton_steps;
   options.position.certify_depth = a.certify_depth;
   options.self_crossing_moves = !a.no_loop_moves;
@@ -661,6 +663,11 @@ Action add_mesh_command(CLI::App& app) {
                   "untangling: most L-BFGS iterations per round")
       ->capture_default_str()
       ->check(CLI::Range(1, 10000000));
+  sub->add_flag("--position-precondition,!--no-position-precondition",
+                args->position_precondition,
+                "untangling: L-BFGS preconditioned by a multigrid V-cycle of the hex edges' graph "
+                "Laplacian")
+      ->capture_default_str();
   sub->add_option("--position-newton-after", args->position_newton_after,
                   "untangling: a round whose L-BFGS uses this many iterations goes on with "
                   "projected Newton steps (sparse Cholesky); 0: never")

@@ -396,4 +396,45 @@ SolveOutcome solve_laplacian(const FreeLaplacian& l, const std::vector<Row3>& b,
   return out;
 }
 
+struct LaplacianPreconditioner::Impl {
+  std::optional<Multigrid> mg;
+  std::vector<double> inv_degree;
+};
+
+LaplacianPreconditioner::LaplacianPreconditioner(const FreeLaplacian& l,
+                                                 const LaplacianSolveOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+  const std::size_t n = l.degree.size();
+  impl_->inv_degree.resize(n);
+  for (std::size_t i = 0; i < n; ++i) impl_->inv_degree[i] = 1.0 / l.degree[i];
+  if (n == 0) return;
+  LevelMatrix a;
+  a.diag = l.degree;
+  a.row_start = l.row_start;
+  a.col = l.neighbour;
+  impl_->mg.emplace(std::move(a), options);
+  if (!impl_->mg->usable()) impl_->mg.reset();
+}
+
+LaplacianPreconditioner::~LaplacianPreconditioner() = default;
+LaplacianPreconditioner::LaplacianPreconditioner(LaplacianPreconditioner&&) noexcept = default;
+LaplacianPreconditioner& LaplacianPreconditioner::operator=(LaplacianPreconditioner&&) noexcept =
+    default;
+
+void LaplacianPreconditioner::apply(const std::vector<Row3>& r, std::vector<Row3>& z) {
+  if (impl_->mg) {
+    impl_->mg->apply(r, z);
+    return;
+  }
+  z.resize(r.size());
+  for (std::size_t i = 0; i < r.size(); ++i)
+    for (std::size_t c = 0; c < 3; ++c) z[i][c] = r[i][c] * impl_->inv_degree[i];
+}
+
+std::size_t LaplacianPreconditioner::size() const { return impl_->inv_degree.size(); }
+
+std::size_t LaplacianPreconditioner::levels() const {
+  return impl_->mg ? impl_->mg->levels() : 0;
+}
+
 }  // namespace stcweave::primal

@@ -9,6 +9,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace stcweave::primal {
@@ -49,5 +50,32 @@ struct LaplacianSolveOptions {
 SolveOutcome solve_laplacian(const FreeLaplacian& l, const std::vector<Row3>& b,
                              std::vector<Row3>& x, double tolerance, std::size_t max_iterations,
                              const LaplacianSolveOptions& options = {});
+
+/// One V-cycle of the multigrid above as an operator z = M^-1 r, symmetric positive definite,
+/// for preconditioning other solvers (the untangling's L-BFGS, position_lbfgs.hpp). The
+/// hierarchy is built at every size (below `coarsest` unknowns it is one level, solved
+/// exactly); when coarsening stalls before a level small enough to factor, Jacobi (r / degree).
+/// Sequential: deterministic.
+class LaplacianPreconditioner {
+ public:
+  explicit LaplacianPreconditioner(const FreeLaplacian& l,
+                                   const LaplacianSolveOptions& options = {});
+  ~LaplacianPreconditioner();
+  LaplacianPreconditioner(const LaplacianPreconditioner&) = delete;
+  LaplacianPreconditioner& operator=(const LaplacianPreconditioner&) = delete;
+  LaplacianPreconditioner(LaplacianPreconditioner&&) noexcept;
+  LaplacianPreconditioner& operator=(LaplacianPreconditioner&&) noexcept;
+
+  /// z = M^-1 r, three columns (x, y, z) per free node; `r` and `z` have one row per free node.
+  void apply(const std::vector<Row3>& r, std::vector<Row3>& z);
+  /// Unknowns (free nodes).
+  [[nodiscard]] std::size_t size() const;
+  /// Levels of the hierarchy (0: Jacobi).
+  [[nodiscard]] std::size_t levels() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace stcweave::primal

@@ -24,7 +24,9 @@
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/stc/hex_complex.hpp"
 
+#include "laplacian_solve.hpp"
 #include "node_hexes.hpp"
+#include "position_lbfgs.hpp"
 #include "position_pinch.hpp"
 
 namespace stcweave::primal {
@@ -514,6 +516,43 @@ class NewtonSolver {
   bool analysed_ = false;
   std::vector<Eigen::Matrix<double, 24, 24>> blocks_;
 };
+
+/// The graph Laplacian of the hex edges over the free nodes of `problem`, in its variable
+/// order (the preconditioner of position_lbfgs.hpp).
+FreeLaplacian free_laplacian(const HexMesh& mesh, const Problem& problem) {
+  const std::vector<std::int32_t>& free = problem.free_nodes();
+  std::vector<std::int32_t> slot(static_cast<std::size_t>(mesh.points.rows()), -1);
+  for (std::size_t i = 0; i < free.size(); ++i)
+    slot[static_cast<std::size_t>(free[i])] = static_cast<std::int32_t>(i);
+  const auto edges = stc::unique_edges(mesh.complex);
+  FreeLaplacian l;
+  l.degree.assign(free.size(), 0.0);
+  l.row_start.assign(free.size() + 1, 0);
+  for (const auto& [a, b] : edges) {
+    const std::int32_t sa = slot[static_cast<std::size_t>(a)];
+    const std::int32_t sb = slot[static_cast<std::size_t>(b)];
+    if (sa >= 0) l.degree[static_cast<std::size_t>(sa)] += 1.0;
+    if (sb >= 0) l.degree[static_cast<std::size_t>(sb)] += 1.0;
+    if (sa >= 0 && sb >= 0) {
+      ++l.row_start[static_cast<std::size_t>(sa) + 1];
+      ++l.row_start[static_cast<std::size_t>(sb) + 1];
+    }
+  }
+  for (std::size_t i = 0; i < free.size(); ++i) l.row_start[i + 1] += l.row_start[i];
+  l.neighbour.resize(l.row_start.back());
+  std::vector<std::size_t> fill(l.row_start.begin(), l.row_start.end() - 1);
+  for (const auto& [a, b] : edges) {
+    const std::int32_t sa = slot[static_cast<std::size_t>(a)];
+    const std::int32_t sb = slot[static_cast<std::size_t>(b)];
+    if (sa < 0 || sb < 0) continue;
+    l.neighbour[fill[static_cast<std::size_t>(sa)]++] = sb;
+    l.neighbour[fill[static_cast<std::size_t>(sb)]++] = sa;
+  }
+  for (std::size_t i = 0; i < free.size(); ++i)
+    std::sort(l.neighbour.begin() + static_cast<std::ptrdiff_t>(l.row_start[i]),
+              l.neighbour.begin() + static_cast<std::ptrdiff_t>(l.row_start[i + 1]));
+  return l;
+}
 
 /// The functor LBFGS++ minimises; it remembers the best point it evaluated, so that a
 /// line-search failure never loses progress.
@@ -1202,6 +1241,12 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
     param.max_linesearch = 100;
     param.linesearch = LBFGSpp::LBFGS_LINESEARCH_BACKTRACKING_WOLFE;
     LBFGSpp::LBFGSSolver<double, LBFGSpp::LineSearchBacktracking> solver(param);
+    std::optional<LaplacianPreconditioner> laplacian;
+    std::optional<PreconditionedLbfgs> preconditioned;
+    if (options.precondition) {
+      laplacian.emplace(free_laplacian(mesh, problem));
+      preconditioned.emplace(param, *laplacian);
+    }
     Objective objective(problem);
     std::optional<NewtonSolver> newton;
     // No energy before the first round: "settled" needs two rounds (their eps may differ,
@@ -1221,7 +1266,8 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
       int used = 0;
       bool line_search_failed = false;
       try {
-        used = solver.minimize(objective, x, fx);
+        used = preconditioned ? preconditioned->minimize(objective, x, fx)
+                              : solver.minimize(objective, x, fx);
         report.iterations += static_cast<std::size_t>(used);
       } catch (const std::runtime_error&) {
         // A line search that cannot progress ends L-BFGS; the best point is kept.
@@ -1261,7 +1307,10 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
         p.iterations = report.iterations;
         options.progress(p);
       }
-      if (bad < best_bad) {
+      // Progress: inverted corners down by more than `stall_fraction` of the count at the
+      // last progress (a tail of rounds that each remove a handful of thousands is a stall).
+      if (static_cast<double>(bad) <
+          (1.0 - options.stall_fraction) * static_cast<double>(best_bad)) {
         best_bad = bad;
         stalled = 0;
       } else if (bad > 0) {

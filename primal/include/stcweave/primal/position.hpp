@@ -97,6 +97,9 @@ struct PositionOptions {
   double energy_tolerance = 1e-5;
   /// Give up when the number of inverted corners has not dropped for this many rounds.
   int stall_iterations = 3;
+  /// A round counts as a drop only when the inverted corners fall below (1 - this) times
+  /// their count at the last drop (0: any drop counts, the rule before 2026-12-05).
+  double stall_fraction = 0.05;
   /// L-BFGS memory.
   int memory = 6;
   /// When L-BFGS has used this many iterations in a round (or its line search failed), the
@@ -107,6 +110,10 @@ struct PositionOptions {
   /// slower than L-BFGS alone on every mesh tried (docs/geometry.md): a factorisation of a
   /// volume mesh costs far more than the L-BFGS iterations one step saves.
   int newton_after = 0;
+  /// Untangling rounds minimise with L-BFGS whose initial inverse Hessian is one multigrid
+  /// V-cycle of the hex edges' graph Laplacian over the free nodes (docs/geometry.md,
+  /// "Preconditioned L-BFGS"); false: LBFGS++'s plain L-BFGS (a scaled identity).
+  bool precondition = true;
   /// Projected Newton steps per round at most.
   int max_newton_steps = 50;
   /// Subdivision depth of the Bézier validity certification (0: no subdivision).
