@@ -1,13 +1,15 @@
 // Positioning time against mesh size (Google Benchmark; timings live here, never in tests).
 //
-// - BM_PositionScrambledBox/n/precondition: the n^3 structured box with every interior node moved by a
-//   seeded random vector of up to half its shortest edge (n = 10, 22, 46: about 1k, 10k and
-//   100k hexes). Target: 100k hexes in under 10 s on the 2-core development machine.
-//   precondition 1 is the default L-BFGS with the multigrid Laplacian preconditioner, 0 the
-//   plain L-BFGS (docs/geometry.md, "Preconditioned L-BFGS"); the same in BM_PositionBentBox.
-// - BM_PositionBentBox/n/newton_after/precondition: the n^3 box bent into a 270-degree C, interior from
-//   the harmonic map of the bent boundary (tangled: research/geometry.md §3.3), a harder
-//   case; newton_after 0 is L-BFGS alone, 100 adds projected Newton steps to slow rounds
+// - BM_PositionScrambledBox/n/precondition: the n^3 structured box with every interior node
+//   moved by a seeded random vector of up to half its shortest edge (n = 10, 22, 46: about
+//   1k, 10k and 100k hexes). Target: 100k hexes in under 10 s on the 2-core development
+//   machine. precondition 1 is the default L-BFGS with the multigrid Laplacian
+//   preconditioner, 0 the plain L-BFGS (docs/geometry.md, "Preconditioned L-BFGS"); the same
+//   in BM_PositionBentBox.
+// - BM_PositionBentBox/n/newton_after/precondition: the n^3 box bent into a 270-degree C,
+//   interior from the harmonic map of the bent boundary (tangled: research/geometry.md
+//   §3.3), a harder case; newton_after 0 is L-BFGS alone, 100 adds projected Newton steps to
+//   slow rounds
 //   (n = 20 with Newton takes about nine minutes: not run by default, docs/geometry.md).
 //
 // - BM_ShapePhaseScrambledBox/n: the shape phase alone on a valid scrambled box.

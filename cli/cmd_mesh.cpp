@@ -663,8 +663,7 @@ Action add_mesh_command(CLI::App& app) {
                   "untangling: most L-BFGS iterations per round")
       ->capture_default_str()
       ->check(CLI::Range(1, 10000000));
-  sub->add_flag("--position-precondition,!--no-position-precondition",
-                args->position_precondition,
+  sub->add_flag("--position-precondition,!--no-position-precondition", args->position_precondition,
                 "untangling: L-BFGS preconditioned by a multigrid V-cycle of the hex edges' graph "
                 "Laplacian")
       ->capture_default_str();

@@ -431,7 +431,9 @@ void LaplacianPreconditioner::apply(const std::vector<Row3>& r, std::vector<Row3
     for (std::size_t c = 0; c < 3; ++c) z[i][c] = r[i][c] * impl_->inv_degree[i];
 }
 
-std::size_t LaplacianPreconditioner::size() const { return impl_->inv_degree.size(); }
+std::size_t LaplacianPreconditioner::size() const {
+  return impl_->inv_degree.size();
+}
 
 std::size_t LaplacianPreconditioner::levels() const {
   return impl_->mg ? impl_->mg->levels() : 0;

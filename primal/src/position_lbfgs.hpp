@@ -47,9 +47,8 @@ class PreconditionedLbfgs {
       gradp = grad;
       LBFGSpp::LineSearchBacktracking<double>::LineSearch(f, fx, x, grad, step, drt, xp, param_);
       if (grad.norm() <= param_.epsilon) return k;
-      if (param_.past > 0 &&
-          std::abs(previous - fx) <=
-              param_.delta * std::max({std::abs(fx), std::abs(previous), 1.0})) {
+      if (param_.past > 0 && std::abs(previous - fx) <=
+                                 param_.delta * std::max({std::abs(fx), std::abs(previous), 1.0})) {
         return k;
       }
       previous = fx;
@@ -71,13 +70,11 @@ class PreconditionedLbfgs {
     const std::size_t n = m_.size();
     rows_.resize(n);
     for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t c = 0; c < 3; ++c)
-        rows_[i][c] = v(static_cast<Eigen::Index>(3 * i + c));
+      for (std::size_t c = 0; c < 3; ++c) rows_[i][c] = v(static_cast<Eigen::Index>(3 * i + c));
     m_.apply(rows_, out_);
     z.resize(v.size());
     for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t c = 0; c < 3; ++c)
-        z(static_cast<Eigen::Index>(3 * i + c)) = out_[i][c];
+      for (std::size_t c = 0; c < 3; ++c) z(static_cast<Eigen::Index>(3 * i + c)) = out_[i][c];
   }
 
   void add_correction(const Eigen::VectorXd& s, const Eigen::VectorXd& y) {

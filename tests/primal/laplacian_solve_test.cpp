@@ -224,8 +224,7 @@ std::vector<Row3> apply_laplacian(const FreeLaplacian& l, const std::vector<Row3
   for (std::size_t i = 0; i < x.size(); ++i) {
     for (std::size_t c = 0; c < 3; ++c) y[i][c] = l.degree[i] * x[i][c];
     for (std::size_t e = l.row_start[i]; e < l.row_start[i + 1]; ++e)
-      for (std::size_t c = 0; c < 3; ++c)
-        y[i][c] -= x[static_cast<std::size_t>(l.neighbour[e])][c];
+      for (std::size_t c = 0; c < 3; ++c) y[i][c] -= x[static_cast<std::size_t>(l.neighbour[e])][c];
   }
   return y;
 }

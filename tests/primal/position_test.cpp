@@ -164,15 +164,22 @@ TEST(Position, UntanglesABentBoxWhoseHarmonicPlacementIsTangled) {
   EXPECT_EQ(r.certified.valid, mesh.complex.hexes.size());
 }
 
+/// The 8^3 box bent into a 270-degree C, boundary nodes first, and options that start from
+/// its (tangled) harmonic placement.
+HexMesh bent_box(PositionOptions& options) {
+  HexMesh mesh = test::box_hexes(8, 8, 8);
+  test::bend(mesh, 8.0, 8.0, 1.0, 1.5 * M_PI);
+  options.num_fixed = test::boundary_first(mesh);
+  options.start = StartPosition::Harmonic;
+  return mesh;
+}
+
 TEST(Position, PreconditionedUntanglingNeedsFewerIterationsThanPlainLbfgs) {
   // The bent box above, untangled with and without the Laplacian preconditioner: both reach
   // 0 inverted hexes, and the preconditioned L-BFGS in fewer iterations (measured 2026-12-05;
   // the Example_3 corpus mesh: 5,881 -> 1,616, docs/geometry.md).
-  HexMesh plain = test::box_hexes(8, 8, 8);
-  test::bend(plain, 8.0, 8.0, 1.0, 1.5 * M_PI);
   PositionOptions options;
-  options.num_fixed = test::boundary_first(plain);
-  options.start = StartPosition::Harmonic;
+  HexMesh plain = bent_box(options);
   HexMesh preconditioned = plain;
   options.precondition = false;
   const PositionReport rp = position_nodes(plain, options);
@@ -184,9 +191,7 @@ TEST(Position, PreconditionedUntanglingNeedsFewerIterationsThanPlainLbfgs) {
   EXPECT_LT(rq.iterations, rp.iterations);
   EXPECT_GT(rq.min_scaled_jacobian_after, 0.5);
   // Deterministic like the rest: the same input gives the same positions.
-  HexMesh again = test::box_hexes(8, 8, 8);
-  test::bend(again, 8.0, 8.0, 1.0, 1.5 * M_PI);
-  test::boundary_first(again);
+  HexMesh again = bent_box(options);
   const PositionReport ra = position_nodes(again, options);
   EXPECT_EQ(ra.iterations, rq.iterations);
   EXPECT_TRUE(again.points == preconditioned.points);
@@ -196,11 +201,8 @@ TEST(Position, StallFractionDecidesWhichDropsCount) {
   // Rounds of one iteration leave the bent box tangled for many rounds. With stall_fraction 1
   // no drop counts: stalled after exactly stall_iterations rounds. With 0 every drop counts
   // and the rounds go on.
-  HexMesh strict = test::box_hexes(8, 8, 8);
-  test::bend(strict, 8.0, 8.0, 1.0, 1.5 * M_PI);
   PositionOptions options;
-  options.num_fixed = test::boundary_first(strict);
-  options.start = StartPosition::Harmonic;
+  HexMesh strict = bent_box(options);
   options.max_inner_iterations = 1;
   HexMesh lenient = strict;
   options.stall_fraction = 1.0;
