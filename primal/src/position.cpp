@@ -1161,6 +1161,11 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
                        std::to_string(options.fixed.size()) + " entries for " + std::to_string(n) +
                        " nodes");
   }
+  if (!(options.stall_fraction >= 0.0 && options.stall_fraction <= 1.0)) {
+    throw InvalidInput("position_nodes: stall_fraction is " +
+                       std::to_string(options.stall_fraction) +
+                       ": it must lie in [0, 1] (0: any drop of the inverted corners counts)");
+  }
   std::vector<bool> fixed(n, false);
   for (std::size_t v = 0; v < n; ++v)
     fixed[v] = v < options.num_fixed || (!options.fixed.empty() && options.fixed[v]);
@@ -1284,11 +1289,16 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
           // Newton found no step: L-BFGS goes on with the rest of the round's budget.
           LBFGSpp::LBFGSParam<double> rest_param = param;
           rest_param.max_iterations = left;
-          LBFGSpp::LBFGSSolver<double, LBFGSpp::LineSearchBacktracking> rest(rest_param);
           objective.reset(x, energy);
           fx = energy;
           try {
-            report.iterations += static_cast<std::size_t>(rest.minimize(objective, x, fx));
+            if (laplacian) {
+              PreconditionedLbfgs rest(rest_param, *laplacian);
+              report.iterations += static_cast<std::size_t>(rest.minimize(objective, x, fx));
+            } else {
+              LBFGSpp::LBFGSSolver<double, LBFGSpp::LineSearchBacktracking> rest(rest_param);
+              report.iterations += static_cast<std::size_t>(rest.minimize(objective, x, fx));
+            }
           } catch (const std::runtime_error&) {
           }
           x = objective.best();

@@ -4,11 +4,12 @@
 /// (docs/geometry.md, "Preconditioned L-BFGS"): the two-loop recursion with H0 = gamma M^-1,
 /// M^-1 one V-cycle of the aggregation multigrid of laplacian_solve.hpp and gamma =
 /// s.y / y.(M^-1 y) of the newest correction. The loop, its stopping rules and its line
-/// search are those of LBFGS++'s LBFGSSolver (same parameters), so that only the direction
-/// differs from the unpreconditioned solver.
+/// search are those of LBFGS++'s LBFGSSolver for the parameters the untangling uses (`past`
+/// 0 or 1, `epsilon_rel` 0; others are refused), so that only the direction differs from the
+/// unpreconditioned solver. One difference: after a step that falls back to the gradient (or
+/// skips every correction pair), the trial step is 1 / |d| as at the first iteration, not 1.
 
-#include <LBFGSpp/LineSearchBacktracking.h>
-#include <LBFGSpp/Param.h>
+#include <LBFGS.h>  // LBFGSpp's parameters and line search, in the order they need
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -27,6 +28,8 @@ class PreconditionedLbfgs {
   PreconditionedLbfgs(const LBFGSpp::LBFGSParam<double>& param, LaplacianPreconditioner& m)
       : param_(param), m_(m) {
     param_.check_param();
+    if (param_.past > 1 || param_.epsilon_rel != 0.0)
+      throw std::invalid_argument("PreconditionedLbfgs: only past <= 1 and epsilon_rel = 0");
   }
 
   /// Minimises f from x; returns the iterations used. `f(x, grad)` returns the energy and
@@ -39,6 +42,8 @@ class PreconditionedLbfgs {
     double previous = fx;
     if (grad.norm() <= param_.epsilon) return 1;
     Eigen::VectorXd drt = direction(grad);
+    // A direction of no finite length (a non-finite gradient) gives no step to try.
+    if (!(std::isfinite(drt.norm()) && drt.norm() > 0.0)) return 1;
     double step = 1.0 / drt.norm();
     Eigen::VectorXd xp(x.size());
     Eigen::VectorXd gradp(x.size());
@@ -55,6 +60,7 @@ class PreconditionedLbfgs {
       if (param_.max_iterations != 0 && k >= param_.max_iterations) return k;
       add_correction(x - xp, grad - gradp);
       drt = direction(grad);
+      if (!(std::isfinite(drt.norm()) && drt.norm() > 0.0)) return k;
       step = history_.empty() ? 1.0 / drt.norm() : 1.0;
     }
   }

@@ -275,6 +275,13 @@ TEST(LaplacianPreconditioner, IsSymmetricPositiveDefiniteOnALargeGrid) {
   EXPECT_NEAR(dot(u, mv), dot(v, mu), 1e-10 * std::abs(dot(u, mu)));
   EXPECT_GT(dot(u, mu), 0.0);
   EXPECT_GT(dot(v, mv), 0.0);
+  // The highest frequency too (alternating signs), where the smoother does the work.
+  std::vector<Row3> w(n);
+  for (std::size_t i = 0; i < n; ++i) w[i] = Row3{i % 2 ? 1.0 : -1.0, i % 3 ? 0.5 : -2.0, 1.0};
+  std::vector<Row3> mw;
+  m.apply(w, mw);
+  EXPECT_GT(dot(w, mw), 0.0);
+  EXPECT_NEAR(dot(w, mu), dot(u, mw), 1e-10 * std::abs(dot(w, mw)));
 }
 
 }  // namespace

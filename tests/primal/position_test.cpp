@@ -175,7 +175,9 @@ HexMesh bent_box(PositionOptions& options) {
 }
 
 TEST(Position, PreconditionedUntanglingNeedsFewerIterationsThanPlainLbfgs) {
-  // The bent box above, untangled with and without the Laplacian preconditioner: both reach
+  // An 8^3 bent box like the one above, untangled with and without the Laplacian
+  // preconditioner (primal/src/position_lbfgs.hpp; tests/primal/position_lbfgs_test.cpp tests
+  // the solver alone): both reach
   // 0 inverted hexes, and the preconditioned L-BFGS in fewer iterations (measured 2026-12-05;
   // the Example_3 corpus mesh: 5,881 -> 1,616, docs/geometry.md).
   PositionOptions options;
@@ -212,6 +214,11 @@ TEST(Position, StallFractionDecidesWhichDropsCount) {
   EXPECT_EQ(rs.outer_iterations, static_cast<std::size_t>(options.stall_iterations));
   EXPECT_EQ(rs.stop.rfind("stalled", 0), 0u) << rs.stop;
   EXPECT_GT(rl.outer_iterations, rs.outer_iterations) << rl.stop;
+  // Outside [0, 1] it means nothing: refused.
+  options.stall_fraction = 1.5;
+  EXPECT_THROW(position_nodes(lenient, options), InvalidInput);
+  options.stall_fraction = -0.1;
+  EXPECT_THROW(position_nodes(lenient, options), InvalidInput);
 }
 
 TEST(Position, HarmonicStartWorksWithAMask) {
