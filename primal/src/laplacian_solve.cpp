@@ -396,6 +396,35 @@ SolveOutcome solve_laplacian(const FreeLaplacian& l, const std::vector<Row3>& b,
   return out;
 }
 
+FreeLaplacian edge_laplacian(const std::vector<std::pair<std::int32_t, std::int32_t>>& edges,
+                             const std::vector<std::int32_t>& slot, std::size_t free) {
+  FreeLaplacian l;
+  l.degree.assign(free, 0.0);
+  l.row_start.assign(free + 1, 0);
+  const auto row = [&](std::int32_t node) { return slot[static_cast<std::size_t>(node)]; };
+  for (const auto& [a, b] : edges) {
+    const std::int32_t ra = row(a);
+    const std::int32_t rb = row(b);
+    if (ra >= 0) l.degree[static_cast<std::size_t>(ra)] += 1.0;
+    if (rb >= 0) l.degree[static_cast<std::size_t>(rb)] += 1.0;
+    if (ra >= 0 && rb >= 0) {
+      ++l.row_start[static_cast<std::size_t>(ra) + 1];
+      ++l.row_start[static_cast<std::size_t>(rb) + 1];
+    }
+  }
+  for (std::size_t i = 0; i < free; ++i) l.row_start[i + 1] += l.row_start[i];
+  l.neighbour.resize(l.row_start[free]);
+  std::vector<std::size_t> fill(l.row_start.begin(), l.row_start.end() - 1);
+  for (const auto& [a, b] : edges) {
+    const std::int32_t ra = row(a);
+    const std::int32_t rb = row(b);
+    if (ra < 0 || rb < 0) continue;
+    l.neighbour[fill[static_cast<std::size_t>(ra)]++] = rb;
+    l.neighbour[fill[static_cast<std::size_t>(rb)]++] = ra;
+  }
+  return l;
+}
+
 struct LaplacianPreconditioner::Impl {
   std::optional<Multigrid> mg;
   std::vector<double> inv_degree;

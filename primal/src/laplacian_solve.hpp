@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace stcweave::primal {
@@ -22,6 +23,14 @@ struct FreeLaplacian {
   std::vector<std::size_t> row_start;   ///< CSR offsets into `neighbour`, size free + 1
   std::vector<std::int32_t> neighbour;  ///< free neighbours, as free indices, ascending
 };
+
+/// The Laplacian of `edges` (pairs a < b in increasing order, as `stc::unique_edges` gives
+/// them) over the nodes v with `slot[v] >= 0`, row `slot[v]` of `free` rows. Slots must
+/// increase with the node index, so that each row's neighbours come out ascending (row r first
+/// receives the smaller neighbours of the edges (a, r), then the larger ones of (r, b)). An
+/// edge to a node without a slot counts in the degree only.
+FreeLaplacian edge_laplacian(const std::vector<std::pair<std::int32_t, std::int32_t>>& edges,
+                             const std::vector<std::int32_t>& slot, std::size_t free);
 
 using Row3 = std::array<double, 3>;
 

@@ -518,40 +518,14 @@ class NewtonSolver {
 };
 
 /// The graph Laplacian of the hex edges over the free nodes of `problem`, in its variable
-/// order (the preconditioner of position_lbfgs.hpp).
+/// order (the preconditioner of position_lbfgs.hpp). Its free nodes are ascending, as
+/// `edge_laplacian` needs.
 FreeLaplacian free_laplacian(const HexMesh& mesh, const Problem& problem) {
   const std::vector<std::int32_t>& free = problem.free_nodes();
   std::vector<std::int32_t> slot(static_cast<std::size_t>(mesh.points.rows()), -1);
   for (std::size_t i = 0; i < free.size(); ++i)
     slot[static_cast<std::size_t>(free[i])] = static_cast<std::int32_t>(i);
-  const auto edges = stc::unique_edges(mesh.complex);
-  FreeLaplacian l;
-  l.degree.assign(free.size(), 0.0);
-  l.row_start.assign(free.size() + 1, 0);
-  for (const auto& [a, b] : edges) {
-    const std::int32_t sa = slot[static_cast<std::size_t>(a)];
-    const std::int32_t sb = slot[static_cast<std::size_t>(b)];
-    if (sa >= 0) l.degree[static_cast<std::size_t>(sa)] += 1.0;
-    if (sb >= 0) l.degree[static_cast<std::size_t>(sb)] += 1.0;
-    if (sa >= 0 && sb >= 0) {
-      ++l.row_start[static_cast<std::size_t>(sa) + 1];
-      ++l.row_start[static_cast<std::size_t>(sb) + 1];
-    }
-  }
-  for (std::size_t i = 0; i < free.size(); ++i) l.row_start[i + 1] += l.row_start[i];
-  l.neighbour.resize(l.row_start.back());
-  std::vector<std::size_t> fill(l.row_start.begin(), l.row_start.end() - 1);
-  for (const auto& [a, b] : edges) {
-    const std::int32_t sa = slot[static_cast<std::size_t>(a)];
-    const std::int32_t sb = slot[static_cast<std::size_t>(b)];
-    if (sa < 0 || sb < 0) continue;
-    l.neighbour[fill[static_cast<std::size_t>(sa)]++] = sb;
-    l.neighbour[fill[static_cast<std::size_t>(sb)]++] = sa;
-  }
-  for (std::size_t i = 0; i < free.size(); ++i)
-    std::sort(l.neighbour.begin() + static_cast<std::ptrdiff_t>(l.row_start[i]),
-              l.neighbour.begin() + static_cast<std::ptrdiff_t>(l.row_start[i + 1]));
-  return l;
+  return edge_laplacian(stc::unique_edges(mesh.complex), slot, free.size());
 }
 
 /// The functor LBFGS++ minimises; it remembers the best point it evaluated, so that a
@@ -1245,14 +1219,15 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
                                : options.max_inner_iterations;
     param.max_linesearch = 100;
     param.linesearch = LBFGSpp::LBFGS_LINESEARCH_BACKTRACKING_WOLFE;
-    LBFGSpp::LBFGSSolver<double, LBFGSpp::LineSearchBacktracking> solver(param);
     std::optional<LaplacianPreconditioner> laplacian;
-    std::optional<PreconditionedLbfgs> preconditioned;
-    if (options.precondition) {
-      laplacian.emplace(free_laplacian(mesh, problem));
-      preconditioned.emplace(param, *laplacian);
-    }
+    if (options.precondition) laplacian.emplace(free_laplacian(mesh, problem));
     Objective objective(problem);
+    // L-BFGS from x with parameters p: preconditioned when asked, else LBFGS++'s own.
+    const auto lbfgs = [&](const LBFGSpp::LBFGSParam<double>& p, Eigen::VectorXd& at, double& f) {
+      if (laplacian) return PreconditionedLbfgs(p, *laplacian).minimize(objective, at, f);
+      return LBFGSpp::LBFGSSolver<double, LBFGSpp::LineSearchBacktracking>(p).minimize(objective,
+                                                                                       at, f);
+    };
     std::optional<NewtonSolver> newton;
     // No energy before the first round: "settled" needs two rounds (their eps may differ,
     // so a round that only lowered eps is not mistaken for convergence).
@@ -1271,8 +1246,7 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
       int used = 0;
       bool line_search_failed = false;
       try {
-        used = preconditioned ? preconditioned->minimize(objective, x, fx)
-                              : solver.minimize(objective, x, fx);
+        used = lbfgs(param, x, fx);
         report.iterations += static_cast<std::size_t>(used);
       } catch (const std::runtime_error&) {
         // A line search that cannot progress ends L-BFGS; the best point is kept.
@@ -1292,13 +1266,7 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
           objective.reset(x, energy);
           fx = energy;
           try {
-            if (laplacian) {
-              PreconditionedLbfgs rest(rest_param, *laplacian);
-              report.iterations += static_cast<std::size_t>(rest.minimize(objective, x, fx));
-            } else {
-              LBFGSpp::LBFGSSolver<double, LBFGSpp::LineSearchBacktracking> rest(rest_param);
-              report.iterations += static_cast<std::size_t>(rest.minimize(objective, x, fx));
-            }
+            report.iterations += static_cast<std::size_t>(lbfgs(rest_param, x, fx));
           } catch (const std::runtime_error&) {
           }
           x = objective.best();

@@ -43,8 +43,9 @@ class PreconditionedLbfgs {
     if (grad.norm() <= param_.epsilon) return 1;
     Eigen::VectorXd drt = direction(grad);
     // A direction of no finite length (a non-finite gradient) gives no step to try.
-    if (!(std::isfinite(drt.norm()) && drt.norm() > 0.0)) return 1;
-    double step = 1.0 / drt.norm();
+    double length = drt.norm();
+    if (!(std::isfinite(length) && length > 0.0)) return 1;
+    double step = 1.0 / length;
     Eigen::VectorXd xp(x.size());
     Eigen::VectorXd gradp(x.size());
     for (int k = 1;; ++k) {
@@ -60,8 +61,9 @@ class PreconditionedLbfgs {
       if (param_.max_iterations != 0 && k >= param_.max_iterations) return k;
       add_correction(x - xp, grad - gradp);
       drt = direction(grad);
-      if (!(std::isfinite(drt.norm()) && drt.norm() > 0.0)) return k;
-      step = history_.empty() ? 1.0 / drt.norm() : 1.0;
+      length = drt.norm();
+      if (!(std::isfinite(length) && length > 0.0)) return k;
+      step = history_.empty() ? 1.0 / length : 1.0;
     }
   }
 

@@ -23,47 +23,26 @@ HarmonicReport harmonic_positions(HexMesh& mesh, std::size_t num_fixed) {
   // Unique hex edges (as node pairs), each contributing to the graph Laplacian once.
   const auto edges = stc::unique_edges(mesh.complex);
 
-  FreeLaplacian l;
-  l.degree.assign(free, 0.0);
-  l.row_start.assign(free + 1, 0);
-  std::vector<Row3> rhs(free, Row3{0.0, 0.0, 0.0});
-  const auto is_free = [&](std::int32_t node) {
-    return static_cast<std::size_t>(node) >= num_fixed;
-  };
-  const auto k = [&](std::int32_t node) { return static_cast<std::size_t>(node) - num_fixed; };
-  const auto add_fixed = [&](std::size_t row, std::int32_t fixed_node) {
-    const auto m = static_cast<Eigen::Index>(fixed_node);
-    rhs[row][0] += mesh.points(m, 0);
-    rhs[row][1] += mesh.points(m, 1);
-    rhs[row][2] += mesh.points(m, 2);
-  };
-  for (const auto& [a, b] : edges) {
-    if (is_free(a)) l.degree[k(a)] += 1.0;
-    if (is_free(b)) l.degree[k(b)] += 1.0;
-    if (is_free(a) && is_free(b)) {
-      ++l.row_start[k(a) + 1];
-      ++l.row_start[k(b) + 1];
-    } else if (is_free(a)) {
-      add_fixed(k(a), b);
-    } else if (is_free(b)) {
-      add_fixed(k(b), a);
-    }
-  }
+  std::vector<std::int32_t> slot(n, -1);
+  for (std::size_t v = num_fixed; v < n; ++v) slot[v] = static_cast<std::int32_t>(v - num_fixed);
+  const FreeLaplacian l = edge_laplacian(edges, slot, free);
   for (std::size_t i = 0; i < free; ++i) {
     if (l.degree[i] == 0.0) {
       throw SolverError("harmonic placement: interior node n" + std::to_string(num_fixed + i) +
                         " is on no hex edge");
     }
-    l.row_start[i + 1] += l.row_start[i];
   }
-  // The edges are sorted pairs (a < b): row r first receives the smaller neighbours of the
-  // edges (a, r), then the larger ones of (r, b), so each row comes out ascending.
-  l.neighbour.resize(l.row_start[free]);
-  std::vector<std::size_t> fill(l.row_start.begin(), l.row_start.end() - 1);
+  // Right-hand side: the coordinates of each free node's fixed neighbours, summed.
+  std::vector<Row3> rhs(free, Row3{0.0, 0.0, 0.0});
   for (const auto& [a, b] : edges) {
-    if (!is_free(a) || !is_free(b)) continue;
-    l.neighbour[fill[k(a)]++] = static_cast<std::int32_t>(k(b));
-    l.neighbour[fill[k(b)]++] = static_cast<std::int32_t>(k(a));
+    const std::int32_t ra = slot[static_cast<std::size_t>(a)];
+    const std::int32_t rb = slot[static_cast<std::size_t>(b)];
+    if ((ra >= 0) == (rb >= 0)) continue;
+    const auto r = static_cast<std::size_t>(ra >= 0 ? ra : rb);
+    const auto m = static_cast<Eigen::Index>(ra >= 0 ? b : a);
+    rhs[r][0] += mesh.points(m, 0);
+    rhs[r][1] += mesh.points(m, 1);
+    rhs[r][2] += mesh.points(m, 2);
   }
   // Start from the centroid of the fixed nodes: any start converges, this one is neutral.
   const Eigen::RowVector3d centre =

@@ -14,34 +14,14 @@
 #include <vector>
 
 #include "../../primal/src/laplacian_solve.hpp"
+#include "laplacian_grid.hpp"
 
 namespace stcweave::primal {
 namespace {
 
 /// The graph Laplacian of the interior nodes of the (k+1)^3 lattice, the boundary fixed.
 FreeLaplacian lattice(int k) {
-  const int m = k - 1;
-  const auto id = [m](int i, int j, int l) { return (i - 1) + m * ((j - 1) + m * (l - 1)); };
-  const auto n = static_cast<std::size_t>(m * m * m);
-  FreeLaplacian lap;
-  lap.degree.assign(n, 6.0);
-  lap.row_start.assign(n + 1, 0);
-  std::vector<std::vector<std::int32_t>> rows(n);
-  for (int l = 1; l < k; ++l)
-    for (int j = 1; j < k; ++j)
-      for (int i = 1; i < k; ++i) {
-        const int nb[6][3] = {{i - 1, j, l}, {i + 1, j, l}, {i, j - 1, l},
-                              {i, j + 1, l}, {i, j, l - 1}, {i, j, l + 1}};
-        for (const auto& q : nb)
-          if (q[0] > 0 && q[0] < k && q[1] > 0 && q[1] < k && q[2] > 0 && q[2] < k)
-            rows[static_cast<std::size_t>(id(i, j, l))].push_back(id(q[0], q[1], q[2]));
-      }
-  for (std::size_t i = 0; i < n; ++i) {
-    std::sort(rows[i].begin(), rows[i].end());
-    lap.row_start[i + 1] = lap.row_start[i] + rows[i].size();
-    lap.neighbour.insert(lap.neighbour.end(), rows[i].begin(), rows[i].end());
-  }
-  return lap;
+  return test_grid::grid(k).l;
 }
 
 /// f(x) = 1/2 x^T (L (x) I3) x - b^T x, variables three per node as the untangling's.
