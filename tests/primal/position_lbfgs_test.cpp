@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -116,6 +117,26 @@ TEST(PreconditionedLbfgs, WithTheVCycleNeedsFarFewerIterationsThanPlainLbfgs) {
   const double eq = fq(xq, gq);
   const double ep = fp(xp, gp);
   EXPECT_NEAR(eq, ep, 1e-9 * std::abs(ep));
+}
+
+TEST(PreconditionedLbfgs, StopsWithoutAStepOnANonFiniteGradient) {
+  // The direction has no finite length: no step is tried and x is left as it was. (Without
+  // the check, the line search from a step of 1 / NaN moves x to NaN; an infinite length gives
+  // a step of 0, which it refuses with std::invalid_argument, not caught by the untangling.)
+  const FreeLaplacian l = lattice(4);
+  LaplacianPreconditioner m(l);
+  const auto nan_gradient = [](const Eigen::VectorXd& x, Eigen::VectorXd& grad) {
+    grad = Eigen::VectorXd::Constant(x.size(), std::numeric_limits<double>::quiet_NaN());
+    return 1.0;
+  };
+  Eigen::VectorXd x = Eigen::VectorXd::Ones(static_cast<Eigen::Index>(3 * l.degree.size()));
+  const Eigen::VectorXd start = x;
+  double fx = 0.0;
+  PreconditionedLbfgs solver(params(), m);
+  int iterations = -1;
+  EXPECT_NO_THROW(iterations = solver.minimize(nan_gradient, x, fx));
+  EXPECT_EQ(iterations, 1);
+  EXPECT_TRUE(x == start);
 }
 
 TEST(PreconditionedLbfgs, RefusesTheParametersItDoesNotImplement) {
