@@ -88,10 +88,12 @@ std::size_t compare_on(const WeaveState& state, const Selection& selection,
   Marks nodes, faces, faces2;
   const FrontLoops loops = front_loops(state.front);
   const FrontComponents components = front_components(state.front, nodes);
-  const Ranking full = rank(
-      selection, loop_candidates(state.front, loops, components, true, par, nodes, faces, faces2));
+  // `rank_first` first: `loop_candidates` floods every loop, and the sides it keeps
+  // (SideCache) would then complete every loop cheaply.
   CandidateSet set(state.front, loops, components, par, nodes, faces, faces2, /*check=*/true);
   const Ranking first = rank_first(selection, set);
+  const Ranking full = rank(
+      selection, loop_candidates(state.front, loops, components, true, par, nodes, faces, faces2));
   if (full_out != nullptr) *full_out = full;
   EXPECT_EQ(first.order.size(), full.order.size()) << where;
   if (first.order.empty() || full.order.empty()) return 0;
@@ -145,6 +147,38 @@ TEST(Candidates, TheNonConvexRelaxationComparesExactCountsOnInputFronts) {
         ++relaxed_to_least;
   }
   EXPECT_GT(relaxed_to_least, 0U) << "the relaxation never ran: the test shows nothing";
+}
+
+TEST(Candidates, TheFewestFacesOrderFloodsOnlyUpToTheBest) {
+  // No depth filter (the weave's first pass) and fronts with no sharp edge (box-spheres):
+  // most candidates reach the order by fewest faces collapsed. With
+  // `order_fewest_faces_first` the sides are flooded only up to the best found, so loops
+  // are left incomplete; without it every candidate left is completed; the first is rank's
+  // either way (compare_on).
+  ExtendedParameters par;
+  par.depth_filter = false;
+  const Selection bounded = extended_selection(par);
+  ASSERT_TRUE(bounded.order_fewest_faces_first);
+  Selection complete = bounded;
+  complete.order_fewest_faces_first = false;
+  // (Small spheres would show nothing: every loop of a 5x5x5 one has a side within the best.)
+  std::size_t checked = 0;
+  for (const Shape& s :
+       {Shape{"sphere 8x8x8", box_sphere(8)}, Shape{"sphere 10x10x10", box_sphere(10)}}) {
+    WeaveOptions options;
+    options.rules = RuleSet::Extended;
+    options.extended = par;
+    const WeaveState state =
+        initial_state(s.mesh.surface, options, primal::dihedral_angles(s.mesh));
+    Ranking full;
+    const std::size_t left = compare_on(state, bounded, par, s.name + " (bounded)", &full);
+    const std::size_t none = compare_on(state, complete, par, s.name + " (complete)");
+    if (full.filters.back().rfind("topological:", 0) == 0) {
+      ++checked;
+      EXPECT_GT(left, none) << s.name << ": the bounded order flooded every loop the other did";
+    }
+  }
+  EXPECT_GT(checked, 0U) << "no front reached the order by fewest faces";
 }
 
 TEST(Candidates, AFilterThatDeclaresNothingSeesEveryCandidateComplete) {

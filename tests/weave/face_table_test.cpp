@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <string>
 #include <vector>
 
@@ -102,10 +104,42 @@ std::string differences(const TraceCandidate& a, const TraceCandidate& b) {
 }
 
 struct OneFloodCount {
-  std::size_t one = 0;   // loops whose properties came from one flood
-  std::size_t both = 0;  // loops left to the two floods
-  std::size_t kept = 0;  // loops whose flooded side came from the previous selections
+  std::size_t one = 0;      // loops whose properties came from one flood
+  std::size_t both = 0;     // loops left to the two floods
+  std::size_t kept = 0;     // loops whose flooded side came from the previous selections
+  std::size_t stopped = 0;  // sides `faces_collapsed_at_least` stopped at its limit
 };
+
+/// `faces_collapsed_at_least` on `strip` against its exact faces collapsed (`ref`), at limits
+/// below, at and above them: exact within the limit, the limit + 1 above it, 0 for a side not
+/// asked for.
+void expect_bounds_of(const Front& front, const FaceTable& table, const Strip& strip,
+                      const std::array<TraceCandidate, 2>& ref, const std::string& what,
+                      OneFloodCount& count) {
+  Marks nodes, faces, faces2;
+  const std::size_t low = std::min(ref[0].faces_collapsed, ref[1].faces_collapsed);
+  const std::size_t high = std::max(ref[0].faces_collapsed, ref[1].faces_collapsed);
+  for (const std::size_t limit : {std::size_t{0}, strip.size(), low - 1, low, high - 1, high,
+                                  high + 7, std::numeric_limits<std::size_t>::max()}) {
+    for (const unsigned sides : {1U, 2U, 3U}) {
+      const auto got =
+          faces_collapsed_at_least(front, table, strip, sides, limit, nodes, faces, faces2);
+      for (std::size_t d = 0; d < 2; ++d) {
+        const std::string where = what + ", limit " + std::to_string(limit) + ", sides " +
+                                  std::to_string(sides) + ", side " + "AB"[d];
+        const std::size_t exact = ref[d].faces_collapsed;
+        if ((sides & (1U << d)) == 0U) {
+          EXPECT_EQ(got[d], 0U) << where;
+        } else if (exact <= limit) {
+          EXPECT_EQ(got[d], exact) << where;
+        } else {
+          EXPECT_EQ(got[d], limit + 1) << where;
+          ++count.stopped;
+        }
+      }
+    }
+  }
+}
 
 /// Shrinks `steps` loops of `surface`'s front (side angles mixed per face and side, so that
 /// the non-convex counts are not all zero; depths come from the shrinks): at every front, each
@@ -142,6 +176,7 @@ OneFloodCount expect_one_flood_exact(const stc::QuadSurface& surface, std::size_
       const auto one = one_flood_properties(front, table, strip, comps, totals, par, nodes, faces,
                                             faces2, &cache);
       ++(one ? count.one : count.both);
+      if (!ref[0].self_intersecting) expect_bounds_of(front, table, strip, ref, what, count);
       for (std::size_t d = 0; d < 2; ++d) {
         const std::string where = what + ", step " + std::to_string(step) + ", loop " +
                                   std::to_string(l) + " side " + "AB"[d];
@@ -175,6 +210,7 @@ TEST(OneFlood, MatchesBothFloodsOnBoxesAndAnLBlock) {
   const OneFloodCount box = expect_one_flood_exact(test::box_surface(4, 3, 5).surface, 12, "box");
   EXPECT_GT(box.one, 0U) << "a box's loops separate it: one flood each";
   EXPECT_GT(box.kept, 0U) << "loops away from a shrink keep their flooded side";
+  EXPECT_GT(box.stopped, 0U) << "the bounded floods stopped somewhere";
   const OneFloodCount lblock =
       expect_one_flood_exact(test::voxel_surface(test::lblock_cells()).surface, 12, "lblock");
   EXPECT_GT(lblock.one, 0U);

@@ -48,6 +48,14 @@ class CandidateSet {
   void complete(std::int32_t loop);
   /// Every loop completed: `loop_candidates`.
   void complete_all();
+  /// For an order by fewest faces collapsed (`Selection::order_fewest_faces_first`): makes
+  /// the candidates of `set` (indices into `all()`) complete where they may be first, and
+  /// gives every other one a `faces_collapsed` that is a lower bound of its own and above the
+  /// least of the set, so that ordering `set` puts first the candidate `complete_all` would.
+  /// The sides are flooded only up to a limit (`faces_collapsed_at_least`) that starts at
+  /// the least faces collapsed of the previous such call (a hint: it changes the work only)
+  /// and doubles until some candidate of the set is within it.
+  void bound_faces(const std::vector<std::size_t>& set);
 
  private:
   const Front& front_;

@@ -143,6 +143,7 @@ Selection extended_selection(const ExtendedParameters& p) {
   s.last = "topological";
   s.last_reason = "fewest faces collapsed";
   s.list_filters = true;
+  s.order_fewest_faces_first = true;
   return s;
 }
 
@@ -311,6 +312,10 @@ Ranking rank(const Selection& selection, std::vector<TraceCandidate> all) {
 Ranking rank_first(const Selection& selection, CandidateSet& candidates) {
   std::vector<TraceCandidate>& all = candidates.all();
   const auto ready = [&](const std::vector<std::size_t>& set, const Filter* filter) {
+    if (filter == nullptr && selection.order_fewest_faces_first) {
+      candidates.bound_faces(set);  // the order: only the first must be exact
+      return;
+    }
     for (const std::size_t i : set) {
       const TraceCandidate& c = all[i];
       const unsigned reads = filter == nullptr ? side_property::kAll

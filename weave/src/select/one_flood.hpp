@@ -70,6 +70,8 @@ class SideCache {
   void end();
   /// The kept side of `strip`, or null.
   [[nodiscard]] const FloodedSide* find(const Strip& strip);
+  /// Whether a side of `strip` is kept (`find` would find it), counting nothing.
+  [[nodiscard]] bool contains(const Strip& strip) const;
   /// Keeps `side` for `strip`; `nodes`: the side's nodes and the strip's.
   void keep(const Strip& strip, const FloodedSide& side, std::span<const NodeId> nodes);
 
@@ -122,5 +124,17 @@ class SideCache {
     const Front& front, const FaceTable& table, const Strip& strip,
     const FrontComponents& components, ComponentTotals& totals, const ExtendedParameters& par,
     Marks& nodes, Marks& faces, Marks& faces2, SideCache* cache = nullptr);
+
+/// Lower bounds of the faces collapsed of the two sides of `strip`, a loop that does not
+/// cross itself (index 0: side A, 1: side B): each side of `sides` (bit d for side d) is
+/// flooded as `extended_properties` floods it, but only until its faces and the strip's are
+/// more than `limit`. A side whose flood ended first gets its exact faces collapsed (at most
+/// `limit`); a side stopped gets `limit + 1`, a side not asked for 0. The partial flood reads
+/// a subset of the faces the full one reads, so each figure is at most the side's faces
+/// collapsed: a side above a limit can be left out of a ranking by fewest faces without
+/// flooding the rest of it (`CandidateSet::bound_faces`).
+[[nodiscard]] std::array<std::size_t, 2> faces_collapsed_at_least(
+    const Front& front, const FaceTable& table, const Strip& strip, unsigned sides,
+    std::size_t limit, Marks& nodes, Marks& faces, Marks& faces2);
 
 }  // namespace stcweave::weave

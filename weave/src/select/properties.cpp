@@ -463,6 +463,11 @@ const FloodedSide* SideCache::find(const Strip& strip) {
   return &it->second.side;
 }
 
+bool SideCache::contains(const Strip& strip) const {
+  const auto it = entries_.find(key(strip));
+  return it != entries_.end() && it->second.strip == strip;
+}
+
 void SideCache::keep(const Strip& strip, const FloodedSide& side, std::span<const NodeId> nodes) {
   Entry e;
   e.strip = strip;
@@ -669,6 +674,54 @@ std::optional<std::array<TraceCandidate, 2>> one_flood_properties(
   return c;
 }
 
+std::array<std::size_t, 2> faces_collapsed_at_least(const Front& front, const FaceTable& table,
+                                                    const Strip& strip, unsigned sides,
+                                                    std::size_t limit, Marks& nodes, Marks& faces,
+                                                    Marks& faces2) {
+  std::array<std::size_t, 2> out{0, 0};
+  const std::size_t above = limit == kNoLimit ? kNoLimit : limit + 1;
+  const FaceSet strip_faces = mark_strip_faces(faces, front, strip);
+  const std::size_t strip_count = strip.size();  // the loop does not cross itself
+  std::vector<NodeId> stack;
+  for (std::size_t d = 0; d < 2; ++d) {
+    if ((sides & (1U << d)) == 0U) continue;
+    if (strip_count > limit) {
+      out[d] = above;
+      continue;
+    }
+    // The flood of `extended_properties_in`: from side d's strip corners, through faces off
+    // the strip, never through a strip node.
+    const std::uint32_t node_seen = nodes.fresh(front.num_nodes());
+    for (const stc::StripStep& p : strip)
+      for (NodeId m : table.nodes_of(face_of(p))) nodes.set(m.index(), node_seen);
+    stack.clear();
+    for (const stc::StripStep& p : strip) {
+      const stc::Quad& n = table.nodes_of(face_of(p));
+      stack.push_back(quad_at(n, d == 0 ? p.entry : p.entry + 1));
+      stack.push_back(quad_at(n, d == 0 ? p.entry + 3 : p.entry + 2));
+    }
+    const std::uint32_t face_seen = faces2.fresh(front.face_capacity());
+    std::size_t count = strip_count;
+    while (!stack.empty() && count <= limit) {
+      const NodeId n = stack.back();
+      stack.pop_back();
+      for (FaceIndex f : table.faces_at(n)) {
+        const auto fi = static_cast<std::size_t>(f);
+        if (strip_faces.contains(f) || faces2.is(fi, face_seen)) continue;
+        faces2.set(fi, face_seen);
+        if (++count > limit) break;
+        for (NodeId m : table.nodes_of(f)) {
+          if (nodes.is(m.index(), node_seen)) continue;
+          nodes.set(m.index(), node_seen);
+          stack.push_back(m);
+        }
+      }
+    }
+    out[d] = std::min(count, above);
+  }
+  return out;
+}
+
 namespace {
 
 /// `parallel_loop` with the front's neighbours and edge angles read from `table`.
@@ -713,6 +766,10 @@ namespace {
 /// The sides one flood found, kept between this thread's selections: a hint only, every kept
 /// side is checked against the front (SideCache::begin), so it never changes a result.
 thread_local SideCache side_cache;
+
+/// The least faces collapsed the last `CandidateSet::bound_faces` found: where the next one
+/// starts its limit (consecutive selections of a weave find similar figures). A hint only.
+thread_local std::size_t fewest_faces_hint = 0;
 
 }  // namespace
 
@@ -809,6 +866,71 @@ void CandidateSet::complete(std::int32_t loop) {
     slot = c;
   }
   known_[l] = side_property::kAll;
+}
+
+void CandidateSet::bound_faces(const std::vector<std::size_t>& set) {
+  std::size_t best = kNoLimit;
+  std::vector<unsigned> wanted(known_.size(), 0U);  // per loop, the sides in `set`
+  std::vector<std::int32_t> pending;                // loops to bound, in order of `set`
+  const auto least = [&](std::int32_t loop) {
+    const auto l = static_cast<std::size_t>(loop);
+    for (std::size_t d = 0; d < 2; ++d)
+      if ((wanted[l] & (1U << d)) != 0U) best = std::min(best, all_[2 * l + d].faces_collapsed);
+  };
+  for (const std::size_t i : set) {
+    const TraceCandidate& c = all_[i];
+    const auto l = static_cast<std::size_t>(c.loop);
+    if (wanted[l] == 0U) pending.push_back(c.loop);
+    wanted[l] |= 1U << static_cast<unsigned>(c.side);
+  }
+  // Loops known already, loops that cross themselves (always counted in full) and loops whose
+  // flooded side is kept (a cheap completion) first: the least of them bounds the rest.
+  std::vector<std::int32_t> rest;
+  std::size_t shortest = kNoLimit;
+  for (const std::int32_t loop : pending) {
+    const auto l = static_cast<std::size_t>(loop);
+    const Strip& strip = loops_.strips[l];
+    if (known_[l] != side_property::kAll &&
+        (all_[2 * l].self_intersecting || side_cache.contains(strip)))
+      complete(loop);
+    if (known_[l] == side_property::kAll) {
+      least(loop);
+    } else {
+      rest.push_back(loop);
+      shortest = std::min(shortest, strip.size());
+    }
+  }
+  // Passes over the rest with a limit on every side's flood, doubled until the least faces
+  // collapsed found is within it: a loop whose wanted sides all pass the limit collapses more
+  // faces than that least on each of them, so it cannot be first, and is left unflooded.
+  std::size_t cap = best != kNoLimit          ? best
+                    : fewest_faces_hint != 0U ? fewest_faces_hint
+                                              : 4 * std::max<std::size_t>(1, shortest);
+  std::vector<std::int32_t> next;
+  while (!rest.empty()) {
+    next.clear();
+    for (const std::int32_t loop : rest) {
+      const auto l = static_cast<std::size_t>(loop);
+      const std::size_t limit = std::min(cap, best);
+      const std::array<std::size_t, 2> at_least = faces_collapsed_at_least(
+          front_, table_, loops_.strips[l], wanted[l], limit, nodes_, faces_, faces2_);
+      bool within = false;
+      for (std::size_t d = 0; d < 2; ++d)
+        if ((wanted[l] & (1U << d)) != 0U && at_least[d] <= limit) within = true;
+      if (within) {
+        complete(loop);
+        least(loop);
+        continue;
+      }
+      for (std::size_t d = 0; d < 2; ++d)
+        if ((wanted[l] & (1U << d)) != 0U) all_[2 * l + d].faces_collapsed = at_least[d];
+      next.push_back(loop);
+    }
+    if (best <= cap) break;
+    rest.swap(next);
+    cap = cap > kNoLimit / 2 ? kNoLimit : 2 * cap;
+  }
+  if (best != kNoLimit) fewest_faces_hint = best;
 }
 
 void CandidateSet::complete_all() {
