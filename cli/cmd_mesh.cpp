@@ -44,6 +44,7 @@ struct MeshArgs {
   std::string tet_flips = "1";
   int position_rounds = 100;
   int position_iterations = 3000;
+  int position_total_iterations = 30000;
   int position_newton_after = primal::PositionOptions{}.newton_after;
   bool position_precondition = primal::PositionOptions{}.precondition;
   int position_newton_steps = primal::PositionOptions{}.max_newton_steps;
@@ -241,6 +242,7 @@ int run_mesh(const MeshArgs& a) {
 
   options.position.max_outer_iterations = a.position_rounds;
   options.position.max_inner_iterations = a.position_iterations;
+  options.position.max_total_iterations = a.position_total_iterations;
   options.position.theta = a.position_theta;
   options.position.max_shape_sweeps = a.shape_sweeps;
   options.position.shape_target = a.shape_target;
@@ -663,6 +665,11 @@ Action add_mesh_command(CLI::App& app) {
                   "untangling: most L-BFGS iterations per round")
       ->capture_default_str()
       ->check(CLI::Range(1, 10000000));
+  sub->add_option("--position-total-iterations", args->position_total_iterations,
+                  "untangling: most L-BFGS iterations over every round, its total work bound "
+                  "(0: none); when it is reached the hexes still inverted go to the repair")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000000000));
   sub->add_flag("--position-precondition,!--no-position-precondition", args->position_precondition,
                 "untangling: L-BFGS preconditioned by a multigrid V-cycle of the hex edges' graph "
                 "Laplacian")

@@ -1135,6 +1135,11 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
                        std::to_string(options.fixed.size()) + " entries for " + std::to_string(n) +
                        " nodes");
   }
+  if (options.max_total_iterations < 0) {
+    throw InvalidInput("position_nodes: max_total_iterations is " +
+                       std::to_string(options.max_total_iterations) +
+                       "; give 0 (no bound) or a positive count");
+  }
   if (!(options.stall_fraction >= 0.0 && options.stall_fraction <= 1.0)) {
     throw InvalidInput("position_nodes: stall_fraction is " +
                        std::to_string(options.stall_fraction) +
@@ -1236,7 +1241,21 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
     int stalled = 0;
     report.stop = "iteration limit";
     double used_eps = eps;
+    // What the total bound leaves of the iterations (the bound itself when there is none).
+    const auto total = static_cast<std::size_t>(options.max_total_iterations);
+    const auto budget_left = [&]() -> int {
+      if (total == 0) return std::numeric_limits<int>::max();
+      return report.iterations >= total ? 0 : static_cast<int>(total - report.iterations);
+    };
     for (int outer = 0; outer < options.max_outer_iterations; ++outer) {
+      if (budget_left() == 0) {
+        report.stop = "iteration budget (" + std::to_string(total) + " L-BFGS iterations): " +
+                      (bad > 0 ? std::to_string(bad) + " corners still inverted"
+                               : std::string("no corner inverted, the energy still falling"));
+        break;
+      }
+      LBFGSpp::LBFGSParam<double> round_param = param;
+      round_param.max_iterations = std::min(param.max_iterations, budget_left());
       problem.set_epsilon(eps);
       used_eps = eps;
       problem.set_variables(x);
@@ -1246,7 +1265,7 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
       int used = 0;
       bool line_search_failed = false;
       try {
-        used = lbfgs(param, x, fx);
+        used = lbfgs(round_param, x, fx);
         report.iterations += static_cast<std::size_t>(used);
       } catch (const std::runtime_error&) {
         // A line search that cannot progress ends L-BFGS; the best point is kept.
@@ -1254,11 +1273,11 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
       }
       x = objective.best();
       double energy = objective.best_energy();
-      if (options.newton_after > 0 && (line_search_failed || used >= param.max_iterations)) {
+      if (options.newton_after > 0 && (line_search_failed || used >= round_param.max_iterations)) {
         if (!newton) newton.emplace(problem);
         int taken = 0;
         std::tie(energy, taken) = newton_descent(problem, *newton, options, x, report);
-        const int left = options.max_inner_iterations - used;
+        const int left = std::min(options.max_inner_iterations - used, budget_left());
         if (taken == 0 && !line_search_failed && left > 0) {
           // Newton found no step: L-BFGS goes on with the rest of the round's budget.
           LBFGSpp::LBFGSParam<double> rest_param = param;

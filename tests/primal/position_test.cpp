@@ -221,6 +221,27 @@ TEST(Position, StallFractionDecidesWhichDropsCount) {
   EXPECT_THROW(position_nodes(lenient, options), InvalidInput);
 }
 
+TEST(Position, TotalIterationsBoundEveryRound) {
+  // The bent box needs more than a dozen iterations to untangle: with a total bound of 12
+  // the rounds stop there, the last one cut short, and the report says why; with no bound
+  // (0) the same start goes on and untangles. A negative bound is refused.
+  PositionOptions options;
+  HexMesh bounded = bent_box(options);
+  HexMesh free = bounded;
+  options.max_total_iterations = 12;
+  const PositionReport rb = position_nodes(bounded, options);
+  EXPECT_LE(rb.iterations, 12U);
+  EXPECT_GT(rb.iterations, 0U);
+  EXPECT_EQ(rb.stop.rfind("iteration budget (12 L-BFGS iterations)", 0), 0U) << rb.stop;
+  EXPECT_FALSE(rb.converged);
+  options.max_total_iterations = 0;
+  const PositionReport rf = position_nodes(free, options);
+  EXPECT_GT(rf.iterations, 12U) << rf.stop;
+  EXPECT_EQ(rf.stop.find("iteration budget"), std::string::npos) << rf.stop;
+  options.max_total_iterations = -1;
+  EXPECT_THROW(position_nodes(free, options), InvalidInput);
+}
+
 TEST(Position, HarmonicStartWorksWithAMask) {
   // The harmonic placement of a box's interior is the grid itself.
   HexMesh mesh = test::box_hexes(4, 3, 3);

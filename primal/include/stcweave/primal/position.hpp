@@ -90,6 +90,12 @@ struct PositionOptions {
   int max_outer_iterations = 100;
   /// L-BFGS iterations per round.
   int max_inner_iterations = 3000;
+  /// L-BFGS iterations over every round at most (0: no bound): the untangling's total work
+  /// bound. A round that would pass it is cut short and the rounds stop there ("iteration
+  /// budget" in `PositionReport::stop`; the repair of the hexes still inverted runs as after
+  /// a stall). Default: ten rounds' worth, above the longest positionings of the bench that
+  /// end by themselves (about 22,000; docs/geometry.md, "Stopping rules").
+  int max_total_iterations = 30000;
   /// L-BFGS stops when the gradient norm (energy in units of h) is below this.
   double gradient_tolerance = 1e-4;
   /// Stop when every corner is positive and the energy changed by less than this
