@@ -80,6 +80,14 @@ void expect_same_candidate(const TraceCandidate& a, const TraceCandidate& b,
   EXPECT_EQ(a.parallel_to, b.parallel_to) << where;
 }
 
+/// The input front of `s` with `extended` rules and parameters `par`, its angles measured.
+WeaveState input_front(const Shape& s, const ExtendedParameters& par) {
+  WeaveOptions options;
+  options.rules = RuleSet::Extended;
+  options.extended = par;
+  return initial_state(s.mesh.surface, options, primal::dihedral_angles(s.mesh));
+}
+
 /// `rank_first` on the front of `state` against `rank` of every candidate; the number of
 /// loops left incomplete. `full_out`, when given, receives `rank`'s ranking.
 std::size_t compare_on(const WeaveState& state, const Selection& selection,
@@ -135,13 +143,8 @@ TEST(Candidates, TheNonConvexRelaxationComparesExactCountsOnInputFronts) {
   const Selection selection = extended_selection(par);
   std::size_t relaxed_to_least = 0;
   for (const Shape& s : shapes()) {
-    WeaveOptions options;
-    options.rules = RuleSet::Extended;
-    options.extended = par;
-    const WeaveState state =
-        initial_state(s.mesh.surface, options, primal::dihedral_angles(s.mesh));
     Ranking full;
-    (void)compare_on(state, selection, par, s.name, &full);
+    (void)compare_on(input_front(s, par), selection, par, s.name, &full);
     for (const std::string& f : full.filters)
       if (f.rfind("nonconvex:", 0) == 0 && f.find("->least:") != std::string::npos)
         ++relaxed_to_least;
@@ -165,11 +168,7 @@ TEST(Candidates, TheFewestFacesOrderFloodsOnlyUpToTheBest) {
   std::size_t checked = 0;
   for (const Shape& s :
        {Shape{"sphere 8x8x8", box_sphere(8)}, Shape{"sphere 10x10x10", box_sphere(10)}}) {
-    WeaveOptions options;
-    options.rules = RuleSet::Extended;
-    options.extended = par;
-    const WeaveState state =
-        initial_state(s.mesh.surface, options, primal::dihedral_angles(s.mesh));
+    const WeaveState state = input_front(s, par);
     Ranking full;
     const std::size_t left = compare_on(state, bounded, par, s.name + " (bounded)", &full);
     const std::size_t none = compare_on(state, complete, par, s.name + " (complete)");
