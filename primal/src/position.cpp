@@ -1227,11 +1227,31 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
     std::optional<LaplacianPreconditioner> laplacian;
     if (options.precondition) laplacian.emplace(free_laplacian(mesh, problem));
     Objective objective(problem);
-    // L-BFGS from x with parameters p: preconditioned when asked, else LBFGS++'s own.
+    // L-BFGS from x with parameters p: preconditioned when asked, else LBFGS++'s own. Its
+    // iterations are added to the report's, also when its line search fails (then it throws,
+    // and LBFGS++'s own solver, which does not say how far it got, is charged its limit): the
+    // total bound counts every iteration.
     const auto lbfgs = [&](const LBFGSpp::LBFGSParam<double>& p, Eigen::VectorXd& at, double& f) {
-      if (laplacian) return PreconditionedLbfgs(p, *laplacian).minimize(objective, at, f);
-      return LBFGSpp::LBFGSSolver<double, LBFGSpp::LineSearchBacktracking>(p).minimize(objective,
-                                                                                       at, f);
+      int used = 0;
+      if (laplacian) {
+        PreconditionedLbfgs solver(p, *laplacian);
+        try {
+          used = solver.minimize(objective, at, f);
+        } catch (const std::runtime_error&) {
+          report.iterations += static_cast<std::size_t>(solver.iterations());
+          throw;
+        }
+      } else {
+        try {
+          used = LBFGSpp::LBFGSSolver<double, LBFGSpp::LineSearchBacktracking>(p).minimize(
+              objective, at, f);
+        } catch (const std::runtime_error&) {
+          report.iterations += static_cast<std::size_t>(p.max_iterations);
+          throw;
+        }
+      }
+      report.iterations += static_cast<std::size_t>(used);
+      return used;
     };
     std::optional<NewtonSolver> newton;
     // No energy before the first round: "settled" needs two rounds (their eps may differ,
@@ -1247,11 +1267,14 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
       if (total == 0) return std::numeric_limits<int>::max();
       return report.iterations >= total ? 0 : static_cast<int>(total - report.iterations);
     };
+    const auto budget_spent = [&] {
+      return "iteration budget (" + std::to_string(total) + " L-BFGS iterations): " +
+             (bad > 0 ? std::to_string(bad) + " corners still inverted"
+                      : std::string("no corner inverted, the energy still falling"));
+    };
     for (int outer = 0; outer < options.max_outer_iterations; ++outer) {
       if (budget_left() == 0) {
-        report.stop = "iteration budget (" + std::to_string(total) + " L-BFGS iterations): " +
-                      (bad > 0 ? std::to_string(bad) + " corners still inverted"
-                               : std::string("no corner inverted, the energy still falling"));
+        report.stop = budget_spent();
         break;
       }
       LBFGSpp::LBFGSParam<double> round_param = param;
@@ -1266,14 +1289,15 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
       bool line_search_failed = false;
       try {
         used = lbfgs(round_param, x, fx);
-        report.iterations += static_cast<std::size_t>(used);
       } catch (const std::runtime_error&) {
         // A line search that cannot progress ends L-BFGS; the best point is kept.
         line_search_failed = true;
       }
       x = objective.best();
       double energy = objective.best_energy();
-      if (options.newton_after > 0 && (line_search_failed || used >= round_param.max_iterations)) {
+      // (Not when the total bound cut the round: it is spent.)
+      if (options.newton_after > 0 && (line_search_failed || used >= param.max_iterations) &&
+          budget_left() > 0) {
         if (!newton) newton.emplace(problem);
         int taken = 0;
         std::tie(energy, taken) = newton_descent(problem, *newton, options, x, report);
@@ -1285,7 +1309,7 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
           objective.reset(x, energy);
           fx = energy;
           try {
-            report.iterations += static_cast<std::size_t>(lbfgs(rest_param, x, fx));
+            (void)lbfgs(rest_param, x, fx);
           } catch (const std::runtime_error&) {
           }
           x = objective.best();
@@ -1327,6 +1351,10 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
         break;
       }
       eps = std::sqrt(1e-12 + 0.04 * std::min(dmin, 0.0) * std::min(dmin, 0.0));
+    }
+    if (report.stop == "iteration limit" && total > 0 && report.iterations >= total) {
+      // The last round allowed also spent the total: say so.
+      report.stop = budget_spent();
     }
     report.epsilon = used_eps;
     // Both energies with the last round's eps, so that they compare.

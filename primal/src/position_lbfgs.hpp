@@ -33,10 +33,12 @@ class PreconditionedLbfgs {
   }
 
   /// Minimises f from x; returns the iterations used. `f(x, grad)` returns the energy and
-  /// writes the gradient. Throws std::runtime_error when the line search fails (as LBFGS++).
+  /// writes the gradient. Throws std::runtime_error when the line search fails (as LBFGS++);
+  /// `iterations()` then says how many iterations had begun, the failed one included.
   template <typename F>
   int minimize(F& f, Eigen::VectorXd& x, double& fx) {
     history_.clear();
+    iterations_ = 0;
     Eigen::VectorXd grad(x.size());
     fx = f(x, grad);
     double previous = fx;
@@ -49,6 +51,7 @@ class PreconditionedLbfgs {
     Eigen::VectorXd xp(x.size());
     Eigen::VectorXd gradp(x.size());
     for (int k = 1;; ++k) {
+      iterations_ = k;
       xp = x;
       gradp = grad;
       LBFGSpp::LineSearchBacktracking<double>::LineSearch(f, fx, x, grad, step, drt, xp, param_);
@@ -67,11 +70,15 @@ class PreconditionedLbfgs {
     }
   }
 
+  /// The iterations the last `minimize` began (also when its line search failed).
+  [[nodiscard]] int iterations() const { return iterations_; }
+
  private:
   struct Pair {
     Eigen::VectorXd s, y;
     double rho;  ///< 1 / s.y
   };
+  int iterations_ = 0;
 
   /// z = M^-1 v, through the preconditioner's one-row-per-node layout.
   void precondition(const Eigen::VectorXd& v, Eigen::VectorXd& z) {

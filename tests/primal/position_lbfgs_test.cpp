@@ -98,8 +98,11 @@ TEST(PreconditionedLbfgs, WithTheVCycleNeedsFarFewerIterationsThanPlainLbfgs) {
   double fxq = 0.0;
   // A gradient tolerance the line search can resolve on 20,577 unknowns (|b| ~ 100); a line
   // search that fails at the rounding floor ends the run as in the untangling (best point).
-  LBFGSpp::LBFGSSolver<double, LBFGSpp::LineSearchBacktracking> plain(params(1e-4));
-  PreconditionedLbfgs preconditioned(params(1e-4), m);
+  // LBFGS++'s solver keeps a reference to its parameters: they must outlive it (a temporary
+  // here left it reading a dead object, which passed or failed with the stack's layout).
+  const LBFGSpp::LBFGSParam<double> param = params(1e-4);
+  LBFGSpp::LBFGSSolver<double, LBFGSpp::LineSearchBacktracking> plain(param);
+  PreconditionedLbfgs preconditioned(param, m);
   try {
     plain.minimize(fp, xp, fxp);
   } catch (const std::runtime_error&) {

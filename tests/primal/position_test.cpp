@@ -238,6 +238,15 @@ TEST(Position, TotalIterationsBoundEveryRound) {
   const PositionReport rf = position_nodes(free, options);
   EXPECT_GT(rf.iterations, 12U) << rf.stop;
   EXPECT_EQ(rf.stop.find("iteration budget"), std::string::npos) << rf.stop;
+  // The bound is over every round: rounds of 5 iterations under a total of 12 are 5, 5 and
+  // a third cut to 2.
+  HexMesh rounds = bent_box(options);
+  options.max_inner_iterations = 5;
+  options.max_total_iterations = 12;
+  const PositionReport rr = position_nodes(rounds, options);
+  EXPECT_EQ(rr.iterations, 12U) << rr.stop;
+  EXPECT_EQ(rr.outer_iterations, 3U) << rr.stop;
+  EXPECT_EQ(rr.stop.rfind("iteration budget", 0), 0U) << rr.stop;
   options.max_total_iterations = -1;
   EXPECT_THROW(position_nodes(free, options), InvalidInput);
 }

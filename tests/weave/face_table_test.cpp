@@ -134,7 +134,7 @@ void expect_bounds_of(const Front& front, const FaceTable& table, const Strip& s
           EXPECT_EQ(got[d], exact) << where;
         } else {
           EXPECT_EQ(got[d], limit + 1) << where;
-          ++count.stopped;
+          if (limit >= strip.size()) ++count.stopped;  // stopped inside the flood
         }
       }
     }
@@ -176,7 +176,11 @@ OneFloodCount expect_one_flood_exact(const stc::QuadSurface& surface, std::size_
       const auto one = one_flood_properties(front, table, strip, comps, totals, par, nodes, faces,
                                             faces2, &cache);
       ++(one ? count.one : count.both);
-      if (!ref[0].self_intersecting) expect_bounds_of(front, table, strip, ref, what, count);
+      if (!ref[0].self_intersecting) {
+        expect_bounds_of(front, table, strip, ref,
+                         what + ", step " + std::to_string(step) + ", loop " + std::to_string(l),
+                         count);
+      }
       for (std::size_t d = 0; d < 2; ++d) {
         const std::string where = what + ", step " + std::to_string(step) + ", loop " +
                                   std::to_string(l) + " side " + "AB"[d];

@@ -146,6 +146,7 @@ void check_bounded(const Ranking& bounded, const Ranking& full) {
   const TraceCandidate& f = full.order.front();
   if (b.loop != f.loop || b.side != f.side || b.weight != f.weight ||
       b.strictly_on_side != f.strictly_on_side || b.on_strip != f.on_strip ||
+      b.faces_collapsed != f.faces_collapsed || b.depth != f.depth ||
       bounded.reason != full.reason || bounded.decided_by != full.decided_by) {
     throw InternalError("weave: the bounded selection chose loop " + std::to_string(b.loop) +
                         " side " + "AB"[b.side] + " (weight " + std::to_string(b.weight) +

@@ -86,8 +86,9 @@ struct Selection {
   /// Trace the filters (`name:before->after`) and `last:N`, and name them in the reason.
   bool list_filters = false;
   /// `order` compares `faces_collapsed` first, fewer first (as `extended_selection`'s does).
-  /// A weave without an observer then floods the sides of the candidates the filters leave
-  /// only until they hold more faces than the best one found (select/candidates.hpp); clear
+  /// A weave whose observers read only the chosen candidate (`stcweave mesh` without
+  /// `--trace`) then floods the sides of the candidates the filters leave only until they
+  /// hold more faces than the best one found (select/candidates.hpp); clear
   /// it when you give `order` another first key, or the first candidate may be wrong.
   bool order_fewest_faces_first = false;
 };
