@@ -1267,14 +1267,15 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
       if (total == 0) return std::numeric_limits<int>::max();
       return report.iterations >= total ? 0 : static_cast<int>(total - report.iterations);
     };
-    const auto budget_spent = [&] {
+    // (`inverted` passed in: clang 14 cannot capture a structured binding.)
+    const auto budget_spent = [total](std::size_t inverted) {
       return "iteration budget (" + std::to_string(total) + " L-BFGS iterations): " +
-             (bad > 0 ? std::to_string(bad) + " corners still inverted"
-                      : std::string("no corner inverted, the energy still falling"));
+             (inverted > 0 ? std::to_string(inverted) + " corners still inverted"
+                           : std::string("no corner inverted, the energy still falling"));
     };
     for (int outer = 0; outer < options.max_outer_iterations; ++outer) {
       if (budget_left() == 0) {
-        report.stop = budget_spent();
+        report.stop = budget_spent(bad);
         break;
       }
       LBFGSpp::LBFGSParam<double> round_param = param;
@@ -1354,7 +1355,7 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
     }
     if (report.stop == "iteration limit" && total > 0 && report.iterations >= total) {
       // The last round allowed also spent the total: say so.
-      report.stop = budget_spent();
+      report.stop = budget_spent(bad);
     }
     report.epsilon = used_eps;
     // Both energies with the last round's eps, so that they compare.
