@@ -2,6 +2,7 @@
 
 #include <iostream>
 
+#include "commands.hpp"
 #include "stcweave/primal/diagnose.hpp"
 
 namespace stcweave::cli {
@@ -12,6 +13,7 @@ void add_cad_options(CLI::App* sub, CadArgs& args, const std::string& input) {
       sub->add_option("--size", args.size,
                       "CAD input: target edge length of the surface quads (default: a tenth of "
                       "the solid's bounding box diagonal)")
+          ->check(kFinite)
           ->check(CLI::PositiveNumber)
           ->group(group);
   CLI::Option* recipe =

@@ -509,6 +509,7 @@ Action add_bench_command(CLI::App& app) {
                   "comma-separated rule sets to compare side by side (reliable, extended)")
       ->capture_default_str();
   sub->add_option("--timeout", args->timeout, "wall-time limit per run, in seconds")
+      ->check(kFinite)
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   sub->add_option("--memory", args->memory_mb, "address-space limit per run, in MB (0: no limit)")

@@ -84,6 +84,7 @@ int run_check(const CheckArgs& a) {
       a.mesh, a.format == "auto" ? primal::Format::Auto : primal::format_from_name(a.format));
   if (file.hexes.empty())
     throw InvalidInput("check needs a hex mesh; " + a.mesh + " has no hexahedra");
+  primal::require_finite_hex_nodes(file);
   primal::HexMesh mesh;
   mesh.points = file.points;
   mesh.complex.hexes = file.hexes;

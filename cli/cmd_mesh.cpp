@@ -638,6 +638,7 @@ Action add_mesh_command(CLI::App& app) {
   sub->add_option("--tet-growth", args->tet_growth,
                   "tet interior: the interior tetrahedra may grow away from the boundary to this "
                   "many times the boundary's edge length (1: Gmsh's sizes)")
+      ->check(kFinite)
       ->capture_default_str()
       ->check(CLI::Range(1.0, 10.0));
   sub->add_option("--tet-flips", args->tet_flips,
@@ -685,6 +686,7 @@ Action add_mesh_command(CLI::App& app) {
       ->check(CLI::Range(1, 100000));
   sub->add_option("--position-theta", args->position_theta,
                   "untangling: weight of the volume term against the shape term, in [0, 1]")
+      ->check(kFinite)
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
   sub->add_option("--shape-sweeps", args->shape_sweeps,
@@ -694,11 +696,13 @@ Action add_mesh_command(CLI::App& app) {
       ->check(CLI::Range(0, 100000));
   sub->add_option("--shape-target", args->shape_target,
                   "shape phase: hexes below this scaled Jacobian are worked on")
+      ->check(kFinite)
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
   sub->add_option("--good-start", args->good_start,
                   "positioning keeps a start with no inverted corner whose min scaled Jacobian "
                   "is at least this (no untangling rounds; above 1: never)")
+      ->check(kFinite)
       ->capture_default_str()
       ->check(CLI::Range(0.0, 2.0));
   sub->add_option("--certify-depth", args->certify_depth,

@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "stcweave/primal/diagnose.hpp"
 #include "stcweave/primal/io.hpp"
 #include "stcweave/primal/quality.hpp"
 #include "stcweave/stc/errors.hpp"
@@ -48,6 +49,7 @@ int run_quality(const QualityArgs& a) {
   if (file.hexes.empty())
     throw InvalidInput("quality needs a hex mesh; " + a.mesh +
                        " has no hexahedra (a surface? mesh it first with `stcweave mesh`)");
+  primal::require_finite_hex_nodes(file);
   primal::HexMesh mesh;
   mesh.points = file.points;
   mesh.complex.hexes = file.hexes;

@@ -5,7 +5,9 @@
 /// returns the exit code and lets library exceptions escape (main maps them to codes).
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <functional>
+#include <string>
 
 namespace stcweave::cli {
 
@@ -18,6 +20,21 @@ inline constexpr int kInternal = 3;
 inline constexpr int kInverted = 4;
 
 using Action = std::function<int()>;
+
+/// A real option must be a finite number: CLI11's range checks compare, and NaN passes every
+/// comparison. Put before the range check: `->check(kFinite)->check(CLI::Range(a, b))`.
+inline const CLI::Validator kFinite(
+    [](std::string& text) -> std::string {
+      try {
+        std::size_t used = 0;
+        const double v = std::stod(text, &used);
+        if (std::isfinite(v)) return {};
+      } catch (const std::exception&) {
+        return {};  // not a number at all: the option's own conversion says so
+      }
+      return "must be a finite number, not " + text;
+    },
+    "FINITE");
 
 Action add_loops_command(CLI::App& app);
 Action add_sheets_command(CLI::App& app);

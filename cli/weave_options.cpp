@@ -1,5 +1,6 @@
 #include "weave_options.hpp"
 
+#include "commands.hpp"
 #include "stcweave/stc/errors.hpp"
 
 namespace stcweave::cli {
@@ -14,18 +15,22 @@ void add_weave_options(CLI::App* sub, WeaveArgs& args) {
       ->group(group);
   sub->add_option("--sharp", p.sharp,
                   "extended: dihedral angle (degrees) up to which an edge is sharp convex")
+      ->check(kFinite)
       ->capture_default_str()
       ->group(group);
   sub->add_option("--little-sharp", p.little_sharp,
                   "extended: angle up to which an edge is a little sharp convex")
+      ->check(kFinite)
       ->capture_default_str()
       ->group(group);
   sub->add_option("--flat", p.flat, "extended: angle up to which an edge is flat")
+      ->check(kFinite)
       ->capture_default_str()
       ->group(group);
   sub->add_option("--little-sharp-nonconvex", p.little_sharp_nonconvex,
                   "extended: angle up to which an edge is a little sharp non-convex (above: "
                   "sharp non-convex)")
+      ->check(kFinite)
       ->capture_default_str()
       ->group(group);
   const auto off = [&](const std::string& name, bool& flag, const std::string& what) {
@@ -57,6 +62,7 @@ void add_weave_options(CLI::App* sub, WeaveArgs& args) {
          "--second-convex-min-weight", p.second_convex_min_weight,
          "extended: a side elimination weight (sharp side edges / loop length) below this "
          "counts as 0 (0: the seed's rule; 0.1: fewer than one sharp edge in ten is a stray one)")
+      ->check(kFinite)
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0))
       ->group(group);

@@ -1,7 +1,9 @@
 #include "stcweave/primal/diagnose.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "stcweave/stc/errors.hpp"
@@ -9,6 +11,13 @@
 
 namespace stcweave::primal {
 namespace {
+
+/// A magnitude in messages: six significant digits, exponent form where it is large.
+std::string number(double v) {
+  std::array<char, 32> buf{};
+  std::snprintf(buf.data(), buf.size(), "%.6g", v);
+  return buf.data();
+}
 
 /// How many elements a message names before saying how many there are in all.
 constexpr std::size_t kNamed = 5;
@@ -257,6 +266,16 @@ SurfaceDiagnosis diagnose(const MeshFile& file) {
   }
   d.nonfinite_nodes = d.sites.nonfinite_nodes.size();
   d.coincident_nodes = count_coincident(file.points, finite);
+  if (!finite.empty()) {
+    Eigen::RowVector3d lo = file.points.row(finite.front().value());
+    Eigen::RowVector3d hi = lo;
+    for (NodeId v : finite) {
+      lo = lo.cwiseMin(file.points.row(v.value()));
+      hi = hi.cwiseMax(file.points.row(v.value()));
+    }
+    d.coordinate_magnitude = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+    d.extent = (hi - lo).maxCoeff();
+  }
 
   // Handles: which cycles bound inside the solid (needs the embedding, oriented outward).
   if (d.genus && *d.genus > 0 && d.closed && d.manifold && topo.is_orientable() &&
@@ -309,6 +328,8 @@ nlohmann::json to_json(const SurfaceDiagnosis& d) {
   j["coincident_nodes"] = d.coincident_nodes;
   j["degenerate_quads"] = d.degenerate_quads;
   j["nonfinite_nodes"] = d.nonfinite_nodes;
+  j["coordinate_magnitude"] = d.coordinate_magnitude;
+  j["extent"] = d.extent;
   j["nonmanifold_hex_faces"] = d.nonmanifold_hex_faces;
   nlohmann::json self = nlohmann::json::array();
   for (const SelfIntersection& s : d.sites.self_intersecting_loops) {
@@ -347,6 +368,22 @@ nlohmann::json to_json(const SurfaceDiagnosis& d) {
   return j;
 }
 
+void require_finite_hex_nodes(const MeshFile& file) {
+  std::vector<char> used(static_cast<std::size_t>(file.points.rows()), 0);
+  for (const stc::Hex& h : file.hexes)
+    for (NodeId v : h)
+      if (v.is_valid() && v.index() < used.size()) used[v.index()] = 1;
+  std::vector<NodeId> bad;
+  for (std::size_t v = 0; v < used.size(); ++v)
+    if (used[v] != 0 && !is_finite_row(file.points, static_cast<Eigen::Index>(v)))
+      bad.push_back(NodeId(v));
+  if (bad.empty()) return;
+  throw InvalidInput(file.path + ": " + std::to_string(bad.size()) +
+                     " hex node(s) have non-finite coordinates (NaN or infinite): " +
+                     name_list(bad, [](std::size_t, NodeId v) { return v.str(); }) +
+                     "; fix or remove those nodes in the file");
+}
+
 void require_weavable(const SurfaceDiagnosis& d, bool allow_self_intersecting_loops) {
   const std::string at = prefix(d);
   const auto quad = [&](std::size_t, QuadId q) { return quad_name(d, q); };
@@ -367,18 +404,39 @@ void require_weavable(const SurfaceDiagnosis& d, bool allow_self_intersecting_lo
                         ": stcweave needs a pure quad surface (or hex mesh); convert the other "
                         "cells to quads (e.g. split each triangle into three quads) and retry");
   }
+  if (d.quads == 0 && d.from_hexes) {
+    throw TopologyError(at + "the file's " + std::to_string(d.hexes) +
+                        " hexahedra have no boundary face (every face is shared by two of "
+                        "them: duplicated hexes?); `stcweave check` on the file lists the defects");
+  }
   if (d.quads == 0) {
-    throw TopologyError(
-        at +
-        "no quads and no hexahedra found: nothing to mesh; is this the right file and format? "
-        "(OBJ quads are `f` lines with four nodes; name the format explicitly "
-        "when the extension is wrong)");
+    throw TopologyError(at +
+                        "no quads and no hexahedra found: nothing to mesh; is this the right "
+                        "file and format? (" +
+                        (d.format == "obj" ? "OBJ quads are `f` lines with four nodes; " : "") +
+                        "name the format explicitly when the extension is wrong)");
   }
   if (d.nonfinite_nodes > 0) {
     throw TopologyError(at + std::to_string(d.nonfinite_nodes) +
                         " surface node(s) have non-finite coordinates (NaN or infinite): " +
                         name_list(d.sites.nonfinite_nodes, node) +
                         "; fix or remove those nodes in the file");
+  }
+  if (d.quads > 0 && d.coordinate_magnitude > kLargestCoordinate) {
+    throw TopologyError(
+        at + "coordinates up to " + number(d.coordinate_magnitude) +
+        " lie beyond the range the geometry works in (|x| <= " + number(kLargestCoordinate) +
+        "): rescale the model (e.g. change its length unit) and retry");
+  }
+  if (d.quads > 0 && d.extent < kSmallestExtent) {
+    throw TopologyError(
+        at +
+        (d.extent == 0.0
+             ? std::string("the surface has no extent: all its nodes coincide; give the "
+                           "nodes their coordinates")
+             : "the surface's bounding box is only " + number(d.extent) +
+                   " across, below the range the geometry works in (" + number(kSmallestExtent) +
+                   "); rescale the model (e.g. change its length unit) and retry"));
   }
   if (d.degenerate_quads > 0) {
     throw TopologyError(

@@ -1871,6 +1871,8 @@ Format sniff(std::string_view text) {
 }
 
 MeshFile read_text(std::string_view text, Format format, const std::string& name) {
+  // A UTF-8 byte-order mark (editors on Windows write one) is no part of the first token.
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
   if (text.empty()) throw InvalidInput(name + ":1: the file is empty; give a mesh file");
   // A file starting with MFEM is MFEM whatever its extension (MFEM uses `.mesh` too).
   if (sniff(text) == Format::Mfem) format = Format::Mfem;

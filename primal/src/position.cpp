@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -1145,6 +1146,20 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
                        std::to_string(options.stall_fraction) +
                        ": it must lie in [0, 1] (0: any drop of the inverted corners counts)");
   }
+  // NaN passes every comparison-based range check: each real option is tested as a range.
+  const auto require_in = [](const char* name, double value, double lo, double hi,
+                             const char* meaning) {
+    if (value >= lo && value <= hi) return;
+    std::array<char, 160> text{};
+    std::snprintf(text.data(), text.size(), "%s is %g: it must lie in [%g, %g] (%s)", name, value,
+                  lo, hi, meaning);
+    throw InvalidInput(std::string("position_nodes: ") + text.data());
+  };
+  require_in("theta", options.theta, 0.0, 1.0, "the weight of the volume term");
+  require_in("shape_target", options.shape_target, 0.0, 1.0, "a scaled Jacobian");
+  require_in("good_start", options.good_start, 0.0, 2.0, "a scaled Jacobian; above 1: never");
+  require_in("good_start_mean", options.good_start_mean, 0.0, 2.0,
+             "a scaled Jacobian; above 1: never");
   std::vector<bool> fixed(n, false);
   for (std::size_t v = 0; v < n; ++v)
     fixed[v] = v < options.num_fixed || (!options.fixed.empty() && options.fixed[v]);
@@ -1182,9 +1197,25 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
   problem.set_threads(options.threads > 0 ? static_cast<std::size_t>(options.threads)
                                           : std::max(1u, std::thread::hardware_concurrency()));
   if (!mesh.complex.hexes.empty() && !(problem.volume() > 0.0)) {
-    throw InvalidInput("position_nodes: the hexes enclose a total volume of " +
-                       std::to_string(problem.volume()) +
-                       " <= 0: their node order is mirrored (swap nodes 1-3 and 5-7)");
+    const double volume = problem.volume();
+    if (!std::isfinite(volume)) {
+      throw InvalidInput(
+          "position_nodes: the hexes' total volume is not a finite number: the coordinates are "
+          "not finite or too large for the arithmetic (cubes overflow); rescale the model");
+    }
+    const Eigen::RowVector3d lo = mesh.points.colwise().minCoeff();
+    const Eigen::RowVector3d hi = mesh.points.colwise().maxCoeff();
+    const double box = std::pow((hi - lo).norm(), 3);
+    if (volume == 0.0 || std::abs(volume) <= 1e-12 * box) {
+      throw InvalidInput(
+          "position_nodes: the hexes enclose no volume (total 0 to rounding): the boundary is "
+          "flat or its nodes coincide, or the coordinates are too small for the arithmetic; "
+          "check the geometry or rescale the model");
+    }
+    std::array<char, 32> shown{};
+    std::snprintf(shown.data(), shown.size(), "%.6g", volume);
+    throw InvalidInput(std::string("position_nodes: the hexes enclose a negative total volume (") +
+                       shown.data() + "): their node order is mirrored (swap nodes 1-3 and 5-7)");
   }
   report.free_nodes = problem.num_free();
   report.impossible = impossible_corners(mesh, fixed);

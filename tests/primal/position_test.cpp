@@ -4,7 +4,11 @@
 // fixed corners that no position can fix are reported by element instead of iterated on.
 #include "stcweave/primal/position.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <limits>
+#include <string>
 
 #include "primal/position_helpers.hpp"
 #include "stcweave/primal/recover.hpp"
@@ -286,6 +290,45 @@ TEST(Position, MirroredMeshIsRejected) {
   PositionOptions options;
   options.fixed = test::boundary_nodes(mesh);
   EXPECT_THROW((void)position_nodes(mesh, options), InvalidInput);
+}
+
+TEST(Position, MessagesTellAMirroredFromAFlatAndAnOverflowingMesh) {
+  const auto message = [](HexMesh mesh) {
+    PositionOptions options;
+    options.fixed = test::boundary_nodes(mesh);
+    try {
+      (void)position_nodes(mesh, options);
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  HexMesh mirrored = test::box_hexes(3, 3, 3);
+  mirrored.points.col(0) *= -1.0;
+  EXPECT_THAT(message(mirrored), ::testing::HasSubstr("mirrored"));
+  HexMesh flat = test::box_hexes(3, 3, 3);
+  flat.points.col(2).setZero();
+  EXPECT_THAT(message(flat), ::testing::HasSubstr("enclose no volume"));
+  HexMesh huge = test::box_hexes(3, 3, 3);
+  huge.points *= 1e120;  // volumes overflow to infinity
+  EXPECT_THAT(message(huge), ::testing::HasSubstr("not a finite number"));
+}
+
+TEST(Position, RealOptionsOutsideTheirRangeOrNaNAreRejected) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (int which = 0; which < 4; ++which) {
+    for (const double value : {nan, -0.5, 3.0}) {
+      HexMesh mesh = test::box_hexes(2, 2, 2);
+      PositionOptions options;
+      options.fixed = test::boundary_nodes(mesh);
+      double& field = which == 0   ? options.theta
+                      : which == 1 ? options.shape_target
+                      : which == 2 ? options.good_start
+                                   : options.good_start_mean;
+      field = value;
+      EXPECT_THROW((void)position_nodes(mesh, options), InvalidInput) << which << " " << value;
+    }
+  }
 }
 
 TEST(Position, WrongMaskSizeIsRejected) {

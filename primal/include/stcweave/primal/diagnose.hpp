@@ -100,6 +100,11 @@ struct SurfaceDiagnosis {
   std::size_t coincident_nodes = 0;
   std::size_t degenerate_quads = 0;
   std::size_t nonfinite_nodes = 0;
+  /// The largest absolute coordinate and the largest bounding-box extent of the finite
+  /// surface nodes (0 when there are none): `require_weavable` refuses coordinates beyond
+  /// `kLargestCoordinate` and extents below `kSmallestExtent`.
+  double coordinate_magnitude = 0.0;
+  double extent = 0.0;
   /// Faces of the hex mesh used by three or more hexes (0 for a surface file).
   std::size_t nonmanifold_hex_faces = 0;
 
@@ -114,6 +119,13 @@ struct SurfaceDiagnosis {
 
   [[nodiscard]] bool has_even_quads() const { return quads % 2 == 0; }
 };
+
+/// The coordinate range the geometry stages work in. Their arithmetic multiplies up to six
+/// coordinates (Jacobian determinants squared in the untangling energy, Gmsh's Delaunay
+/// predicates in the tet interior), which overflows near 1e50 and underflows near 1e-50; the
+/// bounds leave a wide margin, and no model in real units comes near them.
+inline constexpr double kLargestCoordinate = 1e30;
+inline constexpr double kSmallestExtent = 1e-30;
 
 /// The quad surface of a file: the boundary of its hexes (via `stc::boundary_surface`,
 /// oriented outward for positively oriented hexes, nodes compacted to those used, in
@@ -141,7 +153,8 @@ struct SurfaceDiagnosis {
 /// Throws when the diagnosed surface cannot be filled with hexes by weaving, with a message
 /// naming the defect, the elements concerned (first few, and how many) and what to do.
 /// Checked in this order, one message each: cells other than quads (triangles, ...),
-/// non-finite coordinates, degenerate quads, open surface, non-manifold edges,
+/// non-finite coordinates, coordinates beyond `kLargestCoordinate`, an extent below
+/// `kSmallestExtent`, degenerate quads, open surface, non-manifold edges,
 /// non-manifold nodes, non-orientable surface, odd number of quads, an odd handle cycle
 /// (a cycle of odd length bounding inside the solid: Erickson's obstruction), self-intersecting
 /// loops. Genus > 0 and several components are not defects here (the weaver decides).
@@ -151,6 +164,11 @@ struct SurfaceDiagnosis {
 /// \throw TopologyError on the first defect found.
 void require_weavable(const SurfaceDiagnosis& diagnosis,
                       bool allow_self_intersecting_loops = false);
+
+/// Throws InvalidInput, naming the first few, when a node of the file's hexes has a
+/// non-finite coordinate (the certification and quality commands, which take a hex mesh as
+/// it is, would otherwise report figures of NaN geometry as valid).
+void require_finite_hex_nodes(const MeshFile& file);
 
 /// What `orient_outward` did.
 struct OrientationReport {
