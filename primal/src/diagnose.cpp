@@ -195,6 +195,7 @@ SurfaceDiagnosis diagnose(const MeshFile& file) {
   d.triangles = file.triangles;
   d.tetrahedra = file.tetrahedra;
   d.other_cells = file.other_cells;
+  d.first_other_cell = file.first_other_cell;
 
   std::vector<stc::HexFaceRef> nonmanifold_faces;
   const stc::QuadSurface surface = file_surface(file, &d.quad_origins, &nonmanifold_faces);
@@ -399,6 +400,7 @@ void require_weavable(const SurfaceDiagnosis& d, bool allow_self_intersecting_lo
     add(d.triangles, "triangles");
     add(d.tetrahedra, "tetrahedra");
     add(d.other_cells, "other cells (prisms, pyramids, polygons)");
+    if (!d.first_other_cell.empty()) cells += " (the first other cell: " + d.first_other_cell + ")";
     throw TopologyError(at + "the file holds " + cells + " besides " +
                         (d.from_hexes ? "hexahedra" : "quads") +
                         ": stcweave needs a pure quad surface (or hex mesh); convert the other "

@@ -33,6 +33,14 @@ namespace stcweave::primal {
 
 namespace {
 
+/// Counts a cell that is neither a quad, a hex, a triangle, a tet nor a line; remembers the
+/// first one's line and kind for the diagnosis.
+void note_other_cell(MeshFile& out, std::size_t line, const std::string& what) {
+  ++out.other_cells;
+  if (out.first_other_cell.empty())
+    out.first_other_cell = (line > 0 ? "line " + std::to_string(line) + ": " : "") + what;
+}
+
 // ----------------------------------------------------------------------------------------
 // Small string helpers
 
@@ -505,7 +513,7 @@ MeshFile read_obj(std::string_view text, const std::string& name) {
       else if (face.size() == 3)
         ++out.triangles;
       else
-        ++out.other_cells;
+        note_other_cell(out, key.line, "a face with " + std::to_string(face.size()) + " nodes");
       // Triangles and polygons are only counted, but their indices must exist too.
       if (face.size() != 4) raw.add_other(face.data(), face.size(), key.line, face_number);
     } else if (key.text == "vt" || key.text == "vn" || key.text == "vp" || key.text == "g" ||
@@ -591,7 +599,7 @@ MeshFile read_off(std::string_view text, const std::string& name) {
       if (k == 3)
         ++out.triangles;
       else
-        ++out.other_cells;
+        note_other_cell(out, first.line, "a face with " + std::to_string(k) + " nodes");
       raw.add_other(face.data(), face.size(), first.line, static_cast<long long>(f));
     }
     p.scan.skip_line();  // colours
@@ -803,7 +811,8 @@ MeshFile read_vtk(std::string_view text, const std::string& name) {
           if (k == 3)
             ++out.triangles;
           else
-            ++out.other_cells;
+            note_other_cell(out, polygons->lines[c],
+                            "a polygon with " + std::to_string(k) + " nodes");
           raw.add_other(&polygons->conn[b], k, polygons->lines[c], static_cast<long long>(c));
         }
       }
@@ -910,7 +919,9 @@ MeshFile read_vtk(std::string_view text, const std::string& name) {
           ++out.tetrahedra;
           break;
         case CellKind::Other:
-          ++out.other_cells;
+          note_other_cell(
+              out, cells->lines[c],
+              "VTK cell type " + std::to_string(type) + " with " + std::to_string(k) + " nodes");
           break;
         case CellKind::Quad:
           if (type == 8) {  // VTK_PIXEL: lexicographic order
@@ -1111,7 +1122,9 @@ MeshFile read_vtu(std::string_view text, const std::string& name) {
     } else if (type == 1 || type == 2 || type == 3 || type == 4 || type == 21) {
       // points and lines
     } else {
-      ++out.other_cells;
+      note_other_cell(
+          out, line,
+          "VTK cell type " + std::to_string(type) + " with " + std::to_string(k) + " nodes");
     }
     for (std::size_t j = 0; j < k; ++j) {
       if (conn[b + j] < 0 || conn[b + j] >= out.points.rows())
@@ -1259,7 +1272,8 @@ void read_gmsh_element(Parser& p, long long tag, long long type, std::size_t lin
     // points and lines: the geometry's skeleton
   } else {
     if (info.nodes == 0) ++unknown;
-    ++out.other_cells;
+    note_other_cell(out, line,
+                    "element " + std::to_string(tag) + " of Gmsh type " + std::to_string(type));
   }
 }
 
@@ -1613,7 +1627,9 @@ MeshFile read_mfem(std::string_view text, const std::string& name) {
     else if (geometry == 4)
       ++out.tetrahedra;
     else if (geometry >= 6)
-      ++out.other_cells;
+      note_other_cell(
+          out, first.line,
+          "element " + std::to_string(index) + " of MFEM geometry " + std::to_string(geometry));
     if (geometry != 5 && geometry != 3)
       raw.add_other(nodes.data(), nodes.size(), first.line, index);
   };
@@ -1844,7 +1860,11 @@ MeshFile read_inp(std::string_view text, const std::string& name) {
                  is("dashpot")) {
         // lines and points
       } else {
-        ++out.other_cells;
+        std::string shown = element_type;
+        for (char& ch : shown) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+        note_other_cell(out, line,
+                        "element " + std::to_string(id) + " of type " + shown + " with " +
+                            std::to_string(nodes.size()) + " nodes");
       }
     }
   }

@@ -1,7 +1,8 @@
 // Inputs a fuzzing pass found mishandled: coordinates beyond the arithmetic's range (a crash
 // in Gmsh's Delaunay at 1e64), NaN hex nodes reported as valid, duplicated hexes, a UTF-8
-// byte-order mark, NaN option values. Each must end with exit code 1 or 2 and a message
-// saying what and where, or, for the byte-order mark, be read as if it were not there.
+// byte-order mark, NaN option values, cells of other kinds named without a line. Each must end with
+// exit code 1 or 2 and a message saying what and where, or, for the byte-order mark, be read as if
+// it were not there.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -12,6 +13,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "support/cli_run.hpp"
 
@@ -147,6 +150,27 @@ TEST_F(BadInputCli, RealOptionsRefuseNaN) {
         run("mesh " + box.string() + " -o " + (dir_ / "o.vtk").string() + " " + option + " nan");
     EXPECT_EQ(r.code, 1) << option << r.out;
     EXPECT_THAT(r.out, HasSubstr("must be a finite number")) << option;
+  }
+}
+
+TEST_F(BadInputCli, TheFirstCellOfAnotherKindIsNamedWithItsLine) {
+  // A prism among hexes (VTK), a pentagon among quads (OBJ), a C3D8 with 4 nodes (Abaqus).
+  const fs::path vtk = dir_ / "wedge.vtk", obj = dir_ / "pentagon.obj", inp = dir_ / "short.inp";
+  std::ofstream(vtk) << "# vtk DataFile Version 3.0\nw\nASCII\nDATASET UNSTRUCTURED_GRID\n"
+                        "POINTS 6 double\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 0 1\n0 1 1\n"
+                        "CELLS 1 7\n6 0 1 2 3 4 5\nCELL_TYPES 1\n13\n";
+  std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 2 0\nv 0 0 1\n"
+                        "f 1 2 3 4\nf 1 2 3 5 4\n";
+  std::ofstream(inp) << "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 1, 1, 0\n4, 0, 1, 0\n"
+                        "*ELEMENT, TYPE=C3D8\n1, 1, 2, 3, 4\n";
+  const std::vector<std::pair<fs::path, std::string>> cases = {
+      {vtk, "line 13: VTK cell type 13 with 6 nodes"},
+      {obj, "line 8: a face with 5 nodes"},
+      {inp, "line 7: element 1 of type C3D8 with 4 nodes"}};
+  for (const auto& [file, named] : cases) {
+    const CliRun r = run("mesh " + file.string() + " -o " + (dir_ / "out.vtk").string());
+    EXPECT_EQ(r.code, 2) << r.out;
+    EXPECT_THAT(r.out, HasSubstr("the first other cell: " + named)) << r.out;
   }
 }
 

@@ -77,6 +77,7 @@ struct SurfaceDiagnosis {
   std::size_t triangles = 0;  ///< triangles in the file (a quad surface must have none)
   std::size_t tetrahedra = 0;
   std::size_t other_cells = 0;
+  std::string first_other_cell;  ///< where and what the first other cell is (MeshFile's)
 
   std::size_t quads = 0;
   std::size_t nodes = 0;

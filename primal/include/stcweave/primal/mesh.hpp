@@ -37,7 +37,10 @@ struct MeshFile {
   std::vector<stc::Hex> hexes;   ///< hexahedra, VTK order
   std::size_t triangles = 0;     ///< triangles found (a quad surface must have none)
   std::size_t tetrahedra = 0;
-  std::size_t other_cells = 0;     ///< prisms, pyramids, polygons with > 4 sides, ...
+  std::size_t other_cells = 0;  ///< prisms, pyramids, polygons with > 4 sides, ...
+  /// The first of `other_cells`: where it is and what it is ("line 12: VTK cell type 13
+  /// with 6 nodes"), for the diagnosis's message; empty when there is none.
+  std::string first_other_cell;
   std::vector<std::string> notes;  ///< quirks met while reading (e.g. mislabelled cells)
   /// For each quad, the 1-based line of the file where it is defined (0 when unknown).
   std::vector<std::size_t> quad_lines;
