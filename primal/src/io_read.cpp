@@ -1618,18 +1618,19 @@ MeshFile read_mfem(std::string_view text, const std::string& name) {
     nodes.clear();
     for (int k = 0; k < nv; ++k) nodes.push_back(p.integer("element vertices"));
     if (!keep) return;
-    if (geometry == 5)
+    if (geometry == 5) {
       raw.add_hex(nodes.data(), first.line, index);
-    else if (geometry == 3)
+    } else if (geometry == 3) {
       raw.add_quad(nodes.data(), first.line, index);
-    else if (geometry == 2)
+    } else if (geometry == 2) {
       ++out.triangles;
-    else if (geometry == 4)
+    } else if (geometry == 4) {
       ++out.tetrahedra;
-    else if (geometry >= 6)
+    } else if (geometry >= 6) {
       note_other_cell(
           out, first.line,
           "element " + std::to_string(index) + " of MFEM geometry " + std::to_string(geometry));
+    }
     if (geometry != 5 && geometry != 3)
       raw.add_other(nodes.data(), nodes.size(), first.line, index);
   };
