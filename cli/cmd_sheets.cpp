@@ -116,7 +116,8 @@ Action add_sheets_command(CLI::App& app) {
       "the boundary). Optionally writes the sheet graph (vertex = sheet, edge = chord) "
       "and/or the dual graph (vertex = hex or boundary point, edge = face) as GraphML or "
       "GraphViz DOT, elements named by id (h3, q5, s2, c7). The STC of a non-manifold hex "
-      "complex is undefined: such a file is refused (exit code 2).");
+      "complex (a face in three hexes, a hex repeating a node, two hexes sharing two faces) is "
+      "undefined: such a file is refused (exit code 2).");
   cmd->add_option("FILE", options->file,
                   "Hex mesh file (vtk, vtu, msh, mesh, mfem, inp) holding hexahedra")
       ->required();
