@@ -759,7 +759,17 @@ MeshFile read_vtk(std::string_view text, const std::string& name) {
     } else if (iequals(key.text, "POINTS")) {
       if (have_points) p.fail(key.line, "a second POINTS section; fix the file");
       const std::size_t n = p.count("the POINTS count", 3);
-      (void)p.token("the POINTS data type");
+      const Token type = p.token("the POINTS data type");
+      bool numeric = false;
+      for (const char* t : {"float", "double", "int", "unsigned_int", "long", "unsigned_long",
+                            "short", "unsigned_short", "char", "unsigned_char", "vtktypeint64",
+                            "vtktypeuint64", "vtkidtype"})
+        numeric = numeric || iequals(type.text, t);
+      if (!numeric) {
+        p.fail(type.line, "POINTS data type '" + std::string(type.text) +
+                              "' is not a VTK numeric type (float, double, int, ...); fix the "
+                              "POINTS line");
+      }
       out.points.resize(static_cast<Eigen::Index>(n), 3);
       for (std::size_t i = 0; i < n; ++i)
         for (Eigen::Index k = 0; k < 3; ++k)

@@ -153,6 +153,24 @@ TEST_F(BadInputCli, RealOptionsRefuseNaN) {
   }
 }
 
+TEST_F(BadInputCli, AVtkPointsTypeThatIsNoNumberIsRefused) {
+  const fs::path bad = dir_ / "complex.vtk";
+  std::ofstream(bad) << "# vtk DataFile Version 3.0\nhex\nASCII\nDATASET UNSTRUCTURED_GRID\n"
+                        "POINTS 8 complex\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n0 0 1\n1 0 1\n0 1 1\n"
+                        "1 1 1\nCELLS 1 9\n8 0 1 3 2 4 5 7 6\nCELL_TYPES 1\n12\n";
+  const CliRun r = run("check " + bad.string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_THAT(r.out, HasSubstr(":5: POINTS data type 'complex' is not a VTK numeric type"));
+}
+
+TEST_F(BadInputCli, AnExtremeThresholdIsShownShortInTheMessage) {
+  const CliRun r = run("mesh " + scaled_box(1.0, "b.obj").string() + " -o " +
+                       (dir_ / "o.vtk").string() + " --sharp -1e308");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("sharp (-1e+308)"));
+  EXPECT_LT(r.out.size(), 400U) << r.out;
+}
+
 TEST_F(BadInputCli, TheFirstCellOfAnotherKindIsNamedWithItsLine) {
   // A prism among hexes (VTK), a pentagon among quads (OBJ), a C3D8 with 4 nodes (Abaqus).
   const fs::path vtk = dir_ / "wedge.vtk", obj = dir_ / "pentagon.obj", inp = dir_ / "short.inp";
