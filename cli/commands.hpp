@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <string>
 
@@ -25,13 +26,11 @@ using Action = std::function<int()>;
 /// comparison. Put before the range check: `->check(kFinite)->check(CLI::Range(a, b))`.
 inline const CLI::Validator kFinite(
     [](std::string& text) -> std::string {
-      try {
-        std::size_t used = 0;
-        const double v = std::stod(text, &used);
-        if (std::isfinite(v)) return {};
-      } catch (const std::exception&) {
-        return {};  // not a number at all: the option's own conversion says so
-      }
+      // strtod, not stod: stod throws on overflow ("1e400"), which CLI11 then stores as inf.
+      char* end = nullptr;
+      const double v = std::strtod(text.c_str(), &end);
+      if (end == text.c_str()) return {};  // not a number at all: the option's own check says so
+      if (std::isfinite(v)) return {};
       return "must be a finite number, not " + text;
     },
     "FINITE");

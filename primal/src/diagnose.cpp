@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "stcweave/stc/errors.hpp"
@@ -11,13 +10,6 @@
 
 namespace stcweave::primal {
 namespace {
-
-/// A magnitude in messages: six significant digits, exponent form where it is large.
-std::string number(double v) {
-  std::array<char, 32> buf{};
-  std::snprintf(buf.data(), buf.size(), "%.6g", v);
-  return buf.data();
-}
 
 /// How many elements a message names before saying how many there are in all.
 constexpr std::size_t kNamed = 5;
@@ -408,8 +400,9 @@ void require_weavable(const SurfaceDiagnosis& d, bool allow_self_intersecting_lo
   }
   if (d.quads == 0 && d.from_hexes) {
     throw TopologyError(at + "the file's " + std::to_string(d.hexes) +
-                        " hexahedra have no boundary face (every face is shared by two of "
-                        "them: duplicated hexes?); `stcweave check` on the file lists the defects");
+                        " hexahedra have no boundary face (every face is shared by two or more "
+                        "of them: duplicated hexes?); `stcweave check` on the file lists the "
+                        "defects");
   }
   if (d.quads == 0) {
     throw TopologyError(at +
@@ -426,19 +419,19 @@ void require_weavable(const SurfaceDiagnosis& d, bool allow_self_intersecting_lo
   }
   if (d.quads > 0 && d.coordinate_magnitude > kLargestCoordinate) {
     throw TopologyError(
-        at + "coordinates up to " + number(d.coordinate_magnitude) +
-        " lie beyond the range the geometry works in (|x| <= " + number(kLargestCoordinate) +
+        at + "coordinates up to " + short_number(d.coordinate_magnitude) +
+        " lie beyond the range the geometry works in (|x| <= " + short_number(kLargestCoordinate) +
         "): rescale the model (e.g. change its length unit) and retry");
   }
   if (d.quads > 0 && d.extent < kSmallestExtent) {
     throw TopologyError(
-        at +
-        (d.extent == 0.0
-             ? std::string("the surface has no extent: all its nodes coincide; give the "
-                           "nodes their coordinates")
-             : "the surface's bounding box is only " + number(d.extent) +
-                   " across, below the range the geometry works in (" + number(kSmallestExtent) +
-                   "); rescale the model (e.g. change its length unit) and retry"));
+        at + (d.extent == 0.0
+                  ? std::string("the surface has no extent: all its nodes coincide; give the "
+                                "nodes their coordinates")
+                  : "the surface's bounding box is only " + short_number(d.extent) +
+                        " across, below the range the geometry works in (" +
+                        short_number(kSmallestExtent) +
+                        "); rescale the model (e.g. change its length unit) and retry"));
   }
   if (d.degenerate_quads > 0) {
     throw TopologyError(

@@ -759,11 +759,13 @@ MeshFile read_vtk(std::string_view text, const std::string& name) {
     } else if (iequals(key.text, "POINTS")) {
       if (have_points) p.fail(key.line, "a second POINTS section; fix the file");
       const std::size_t n = p.count("the POINTS count", 3);
+      // Coordinates are read as reals whatever the declared type; only a type that holds no
+      // number (or a misspelt one) is refused. VTK 5.1 writers (meshio) use vtktype* names.
       const Token type = p.token("the POINTS data type");
-      bool numeric = false;
-      for (const char* t : {"float", "double", "int", "unsigned_int", "long", "unsigned_long",
-                            "short", "unsigned_short", "char", "unsigned_char", "vtktypeint64",
-                            "vtktypeuint64", "vtkidtype"})
+      bool numeric = istarts_with(type.text, "vtktype") || iequals(type.text, "vtkidtype");
+      for (const char* t :
+           {"float", "double", "int", "unsigned_int", "long", "unsigned_long", "short",
+            "unsigned_short", "char", "signed_char", "unsigned_char", "bit"})
         numeric = numeric || iequals(type.text, t);
       if (!numeric) {
         p.fail(type.line, "POINTS data type '" + std::string(type.text) +
@@ -1561,7 +1563,17 @@ MeshFile read_medit(std::string_view text, const std::string& name) {
       const auto per = static_cast<std::size_t>(skip->ints) +
                        static_cast<std::size_t>(skip->reals < 0 ? dim : skip->reals);
       const std::size_t n = p.count("the number of " + std::string(k), per);
-      for (std::size_t i = 0; i < n * per; ++i) (void)p.token(std::string(k));
+      const bool volume = k == "Prisms" || k == "Pyramids";
+      for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t j = 0; j < per; ++j) {
+          const Token t = p.token(std::string(k));
+          if (volume && j == 0) {
+            note_other_cell(out, t.line,
+                            std::string(k == "Prisms" ? "a prism" : "a pyramid") + " (" +
+                                std::string(k) + " record " + std::to_string(i + 1) + ")");
+          }
+        }
+      }
     }
   }
   if (!have_vertices) p.fail(p.scan.line(), "no Vertices section; the file holds no mesh");
@@ -1889,6 +1901,7 @@ MeshFile read_inp(std::string_view text, const std::string& name) {
 
 /// The format guessed from the first bytes, or Auto.
 Format sniff(std::string_view text) {
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);  // UTF-8 byte-order mark
   std::size_t i = 0;
   while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
   const std::string_view s = text.substr(i);

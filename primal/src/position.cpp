@@ -12,7 +12,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -1150,10 +1149,9 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
   const auto require_in = [](const char* name, double value, double lo, double hi,
                              const char* meaning) {
     if (value >= lo && value <= hi) return;
-    std::array<char, 160> text{};
-    std::snprintf(text.data(), text.size(), "%s is %g: it must lie in [%g, %g] (%s)", name, value,
-                  lo, hi, meaning);
-    throw InvalidInput(std::string("position_nodes: ") + text.data());
+    throw InvalidInput(std::string("position_nodes: ") + name + " is " + short_number(value) +
+                       ": it must lie in [" + short_number(lo) + ", " + short_number(hi) + "] (" +
+                       meaning + ")");
   };
   require_in("theta", options.theta, 0.0, 1.0, "the weight of the volume term");
   require_in("shape_target", options.shape_target, 0.0, 1.0, "a scaled Jacobian");
@@ -1212,10 +1210,9 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
           "flat or its nodes coincide, or the coordinates are too small for the arithmetic; "
           "check the geometry or rescale the model");
     }
-    std::array<char, 32> shown{};
-    std::snprintf(shown.data(), shown.size(), "%.6g", volume);
-    throw InvalidInput(std::string("position_nodes: the hexes enclose a negative total volume (") +
-                       shown.data() + "): their node order is mirrored (swap nodes 1-3 and 5-7)");
+    throw InvalidInput("position_nodes: the hexes enclose a negative total volume (" +
+                       short_number(volume) +
+                       "): their node order is mirrored (swap nodes 1-3 and 5-7)");
   }
   report.free_nodes = problem.num_free();
   report.impossible = impossible_corners(mesh, fixed);

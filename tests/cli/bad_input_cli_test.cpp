@@ -121,7 +121,7 @@ TEST_F(BadInputCli, DuplicatedHexesAreNamedBySheetsAndMesh) {
   EXPECT_THAT(sheets.out, HasSubstr("h0+h1"));
   const CliRun mesh = run("mesh " + twice.string() + " -o " + (dir_ / "out.vtk").string());
   EXPECT_EQ(mesh.code, 2) << mesh.out;
-  EXPECT_THAT(mesh.out, HasSubstr("have no boundary face"));
+  EXPECT_THAT(mesh.out, HasSubstr("have no boundary face (every face is shared by two or more"));
   EXPECT_EQ(run("sheets " + hex_file("0 0 0", 1, "once.vtk").string()).code, 0);
 }
 
@@ -140,6 +140,10 @@ TEST_F(BadInputCli, AByteOrderMarkIsSkipped) {
   };
   EXPECT_EQ(figures(with_mark.out), figures(plain.out));
   EXPECT_EQ(figures(with_mark.out), "26 24 weavable");
+  // With an extension that does not name the format, the content tells it, mark or not.
+  const fs::path hex = hex_file("0 0 0", 1, "hex.vtk"), unnamed = dir_ / "hex.dat";
+  std::ofstream(unnamed, std::ios::binary) << "\xEF\xBB\xBF" << slurp(hex);
+  EXPECT_EQ(run("check " + unnamed.string()).code, 0) << run("check " + unnamed.string()).out;
 }
 
 TEST_F(BadInputCli, RealOptionsRefuseNaN) {
@@ -151,16 +155,29 @@ TEST_F(BadInputCli, RealOptionsRefuseNaN) {
     EXPECT_EQ(r.code, 1) << option << r.out;
     EXPECT_THAT(r.out, HasSubstr("must be a finite number")) << option;
   }
+  // A number too large for a double is no finite number either (std::stod throws on it).
+  const CliRun huge =
+      run("mesh " + box.string() + " -o " + (dir_ / "o.vtk").string() + " --sharp 1e400");
+  EXPECT_EQ(huge.code, 1) << huge.out;
+  EXPECT_THAT(huge.out, HasSubstr("must be a finite number, not 1e400"));
 }
 
 TEST_F(BadInputCli, AVtkPointsTypeThatIsNoNumberIsRefused) {
-  const fs::path bad = dir_ / "complex.vtk";
-  std::ofstream(bad) << "# vtk DataFile Version 3.0\nhex\nASCII\nDATASET UNSTRUCTURED_GRID\n"
-                        "POINTS 8 complex\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n0 0 1\n1 0 1\n0 1 1\n"
-                        "1 1 1\nCELLS 1 9\n8 0 1 3 2 4 5 7 6\nCELL_TYPES 1\n12\n";
-  const CliRun r = run("check " + bad.string());
+  const auto write = [&](const std::string& type) {
+    const fs::path file = dir_ / ("points_" + type + ".vtk");
+    std::ofstream(file) << "# vtk DataFile Version 3.0\nhex\nASCII\nDATASET UNSTRUCTURED_GRID\n"
+                        << "POINTS 8 " << type
+                        << "\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n0 0 1\n1 0 1\n0 1 1\n"
+                           "1 1 1\nCELLS 1 9\n8 0 1 3 2 4 5 7 6\nCELL_TYPES 1\n12\n";
+    return file;
+  };
+  const CliRun r = run("check " + write("complex").string());
   EXPECT_EQ(r.code, 2) << r.out;
   EXPECT_THAT(r.out, HasSubstr(":5: POINTS data type 'complex' is not a VTK numeric type"));
+  // Every numeric name VTK and its writers use is read (meshio's VTK 5.1 writes vtktype*).
+  for (const char* type : {"float", "double", "int", "signed_char", "vtktypeint32", "vtktypeuint8",
+                           "vtkIdType", "bit"})
+    EXPECT_EQ(run("check " + write(type).string()).code, 0) << type;
 }
 
 TEST_F(BadInputCli, AnExtremeThresholdIsShownShortInTheMessage) {
@@ -172,7 +189,8 @@ TEST_F(BadInputCli, AnExtremeThresholdIsShownShortInTheMessage) {
 }
 
 TEST_F(BadInputCli, TheFirstCellOfAnotherKindIsNamedWithItsLine) {
-  // A prism among hexes (VTK), a pentagon among quads (OBJ), a C3D8 with 4 nodes (Abaqus).
+  // A prism (MEDIT, which skipped them), a wedge (VTK), a pentagon among quads (OBJ), a C3D8
+  // with 4 nodes (Abaqus).
   const fs::path vtk = dir_ / "wedge.vtk", obj = dir_ / "pentagon.obj", inp = dir_ / "short.inp";
   std::ofstream(vtk) << "# vtk DataFile Version 3.0\nw\nASCII\nDATASET UNSTRUCTURED_GRID\n"
                         "POINTS 6 double\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 0 1\n0 1 1\n"
@@ -181,7 +199,11 @@ TEST_F(BadInputCli, TheFirstCellOfAnotherKindIsNamedWithItsLine) {
                         "f 1 2 3 4\nf 1 2 3 5 4\n";
   std::ofstream(inp) << "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 1, 1, 0\n4, 0, 1, 0\n"
                         "*ELEMENT, TYPE=C3D8\n1, 1, 2, 3, 4\n";
+  const fs::path medit = dir_ / "prism.mesh";
+  std::ofstream(medit) << "MeshVersionFormatted 2\nDimension 3\nVertices\n6\n0 0 0 0\n1 0 0 0\n"
+                          "0 1 0 0\n0 0 1 0\n1 0 1 0\n0 1 1 0\nPrisms\n1\n1 2 3 4 5 6 0\nEnd\n";
   const std::vector<std::pair<fs::path, std::string>> cases = {
+      {medit, "line 13: a prism (Prisms record 1)"},
       {vtk, "line 13: VTK cell type 13 with 6 nodes"},
       {obj, "line 8: a face with 5 nodes"},
       {inp, "line 7: element 1 of type C3D8 with 4 nodes"}};

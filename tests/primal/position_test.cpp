@@ -309,6 +309,10 @@ TEST(Position, MessagesTellAMirroredFromAFlatAndAnOverflowingMesh) {
   HexMesh flat = test::box_hexes(3, 3, 3);
   flat.points.col(2).setZero();
   EXPECT_THAT(message(flat), ::testing::HasSubstr("enclose no volume"));
+  HexMesh thin = test::box_hexes(3, 3, 3);  // mirrored, but its volume is rounding
+  thin.points.col(0) *= -1.0;
+  thin.points.col(2) *= 1e-14;
+  EXPECT_THAT(message(thin), ::testing::HasSubstr("enclose no volume"));
   HexMesh huge = test::box_hexes(3, 3, 3);
   huge.points *= 1e120;  // volumes overflow to infinity
   EXPECT_THAT(message(huge), ::testing::HasSubstr("not a finite number"));

@@ -1,8 +1,6 @@
 /// Edge classes by dihedral angle (seed sect. 4.2 and 4.4, Fig. 8) and the names of the rule
 /// sets.
 
-#include <array>
-#include <cstdio>
 #include <string>
 
 #include "stcweave/stc/errors.hpp"
@@ -34,25 +32,15 @@ EdgeClass classify_edge(double angle, const ExtendedParameters& p) {
   return EdgeClass::SharpNonConvex;
 }
 
-namespace {
-
-/// A threshold in messages: six significant digits (std::to_string writes 1e308 in full).
-std::string shown(double v) {
-  std::array<char, 32> buf{};
-  std::snprintf(buf.data(), buf.size(), "%.6g", v);
-  return buf.data();
-}
-
-}  // namespace
-
 void check_parameters(const ExtendedParameters& p) {
   const bool ordered = p.sharp > 0.0 && p.sharp <= p.little_sharp && p.little_sharp <= p.flat &&
                        p.flat <= p.little_sharp_nonconvex && p.little_sharp_nonconvex < 360.0;
   if (!ordered) {
-    throw InvalidInput("edge class thresholds out of order: need 0 < sharp (" + shown(p.sharp) +
-                       ") <= little_sharp (" + shown(p.little_sharp) + ") <= flat (" +
-                       shown(p.flat) + ") <= little_sharp_nonconvex (" +
-                       shown(p.little_sharp_nonconvex) + ") < 360 degrees");
+    throw InvalidInput("edge class thresholds out of order: need 0 < sharp (" +
+                       short_number(p.sharp) + ") <= little_sharp (" +
+                       short_number(p.little_sharp) + ") <= flat (" + short_number(p.flat) +
+                       ") <= little_sharp_nonconvex (" + short_number(p.little_sharp_nonconvex) +
+                       ") < 360 degrees");
   }
   if (!(p.second_convex_min_weight >= 0.0 && p.second_convex_min_weight <= 1.0))
     throw InvalidInput("second_convex_min_weight must be in [0, 1]");

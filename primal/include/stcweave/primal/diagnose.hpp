@@ -147,13 +147,15 @@ inline constexpr double kSmallestExtent = 1e-30;
 /// nonmanifold_edges, coincident_nodes) plus path, format, source ("hex boundary" or
 /// "file quads"), hexes, triangles, tetrahedra, other_cells, quad_parity ("even"/"odd"),
 /// genus_per_component, open_loops, nonmanifold_nodes, inconsistent_edges,
-/// degenerate_quads, nonfinite_nodes, nonmanifold_hex_faces, the self-intersecting loops
-/// with their quads, and weavable / defect (the message of `require_weavable`, or null).
+/// degenerate_quads, nonfinite_nodes, coordinate_magnitude, extent, nonmanifold_hex_faces, the
+/// self-intersecting loops with their quads, and weavable / defect (the message of
+/// `require_weavable`, or null).
 [[nodiscard]] nlohmann::json to_json(const SurfaceDiagnosis& diagnosis);
 
 /// Throws when the diagnosed surface cannot be filled with hexes by weaving, with a message
 /// naming the defect, the elements concerned (first few, and how many) and what to do.
-/// Checked in this order, one message each: cells other than quads (triangles, ...),
+/// Checked in this order, one message each: cells other than quads (triangles, ...; the
+/// first one named by line), hexes without a boundary face, no quads at all,
 /// non-finite coordinates, coordinates beyond `kLargestCoordinate`, an extent below
 /// `kSmallestExtent`, degenerate quads, open surface, non-manifold edges,
 /// non-manifold nodes, non-orientable surface, odd number of quads, an odd handle cycle

@@ -132,10 +132,11 @@ struct PositionOptions {
   /// rounds; the shape phase, whose barrier pass works on the worst hexes, still runs). The
   /// default 0 asks only for validity and the mean: measured on the transfinite cylinders,
   /// the untangling energy evens out the average and barely moves the worst hex, which the
-  /// shape phase raises anyway (docs/geometry.md). Above 1: never stop early.
+  /// shape phase raises anyway (docs/geometry.md). Above 1: never stop early. In [0, 2].
   double good_start = 0.0;
   /// Early stop: the mean scaled Jacobian a good start needs as well (0.95: within a few
-  /// percent of the ideal on average, where the energy has little left to even out).
+  /// percent of the ideal on average, where the energy has little left to even out). In
+  /// [0, 2].
   double good_start_mean = 0.95;
   /// Shape phase after untangling (see `improve_shape`): off with 0 sweeps.
   int max_shape_sweeps = 30;
@@ -391,7 +392,10 @@ struct PositionEnergy {
 /// comment). Fixed nodes keep their coordinates exactly.
 /// \pre the hexes are positively oriented overall (their total signed volume is > 0).
 /// \throw InvalidInput when a hex names a node out of range, the fixed mask has the wrong
-///        size, or the total volume is <= 0 (hexes mirrored).
+///        size, a real option lies outside its range or is NaN (theta and shape_target in
+///        [0, 1], good_start and good_start_mean in [0, 2], stall_fraction in [0, 1],
+///        max_total_iterations >= 0), or the total volume is not > 0 (not finite: coordinates
+///        too large; 0 to rounding: a flat or collapsed boundary; negative: hexes mirrored).
 /// \throw SolverError when the harmonic start fails (StartPosition::Harmonic or Auto): a
 ///        free node not connected by hex edges to any fixed node.
 PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options);

@@ -14,6 +14,8 @@
 /// | `SolverError`    | a numerical solve failed                           | 3         |
 /// | `InternalError`  | a broken invariant: a bug, please report it        | 3         |
 
+#include <array>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -67,5 +69,13 @@ class InternalError : public Error {
  public:
   using Error::Error;
 };
+
+/// A number for a message: six significant digits, exponent form where it is large or small
+/// (std::to_string writes 1e308 with 309 digits and 1e-9 as 0.000000).
+inline std::string short_number(double v) {
+  std::array<char, 32> buf{};
+  std::snprintf(buf.data(), buf.size(), "%.6g", v);
+  return buf.data();
+}
 
 }  // namespace stcweave
