@@ -164,7 +164,7 @@ TEST_F(BadInputCli, RealOptionsRefuseNaN) {
 
 TEST_F(BadInputCli, AVtkPointsTypeThatIsNoNumberIsRefused) {
   const auto write = [&](const std::string& type) {
-    const fs::path file = dir_ / ("points_" + type + ".vtk");
+    fs::path file = dir_ / ("points_" + type + ".vtk");
     std::ofstream(file) << "# vtk DataFile Version 3.0\nhex\nASCII\nDATASET UNSTRUCTURED_GRID\n"
                         << "POINTS 8 " << type
                         << "\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n0 0 1\n1 0 1\n0 1 1\n"
