@@ -14,7 +14,6 @@
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/stc/graph_io.hpp"
 #include "stcweave/stc/hex_stc.hpp"
-#include "stcweave/stc/validate.hpp"
 
 namespace stcweave::cli {
 namespace {
@@ -147,18 +146,6 @@ Action add_sheets_command(CLI::App& app) {
     stc::HexComplex complex;
     complex.hexes = file.hexes;
     complex.num_nodes = static_cast<std::size_t>(file.points.rows());
-    // Chords and sheets are undefined where a hex repeats a node or two hexes share two
-    // faces (duplicated hexes); build_hex_stc itself refuses faces in three hexes.
-    const stc::ValidationReport valid = stc::validate_hex_complex(complex, nullptr);
-    for (const stc::Violation& v : valid.violations) {
-      if (v.invariant == stc::Invariant::RepeatedNode ||
-          v.invariant == stc::Invariant::HexesShareTwoFaces) {
-        throw InvalidInput(options->file + ": the STC of this hex complex is undefined (" +
-                           std::string(v.name()) + ": " + std::to_string(v.count) +
-                           (v.examples.empty() ? std::string() : ", first " + v.examples.front()) +
-                           "); `stcweave check` on the file lists the defects");
-      }
-    }
     const stc::HexStc stc = stc::build_hex_stc(complex);
     const std::vector<stc::StcGraph> graphs = graphs_from_name(options->graph);
     if (!options->graphml.empty())

@@ -151,6 +151,21 @@ HexStc build_hex_stc(const HexComplex& complex) {
                          ", ...); run validate to list every defect");
     }
   }
+  // Two hexes sharing two faces (duplicated hexes): a chord through them has no order.
+  for (std::size_t h = 0; h < num_hexes; ++h) {
+    for (std::size_t i = 1; i < 6; ++i) {
+      const std::int64_t a = faces.neighbour(6 * h + i);
+      if (a < 0) continue;
+      for (std::size_t j = 0; j < i; ++j) {
+        const std::int64_t b = faces.neighbour(6 * h + j);
+        if (b < 0 || b / 6 != a / 6) continue;
+        throw InvalidInput("the STC of this hex complex is undefined: hexes " + HexId(h).str() +
+                           "+" + HexId(static_cast<std::size_t>(a / 6)).str() +
+                           " share two faces (two hexes share at most one: duplicated hexes?); "
+                           "run validate to list every defect");
+      }
+    }
+  }
   std::vector<QuadId> boundary_of_slot(6 * num_hexes, QuadId::invalid());
   stc.boundary.num_nodes = complex.num_nodes;
   for (std::size_t slot = 0; slot < 6 * num_hexes; ++slot) {

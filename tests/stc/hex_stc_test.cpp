@@ -251,6 +251,21 @@ TEST(HexStc, RefusesNonManifoldComplexes) {
   EXPECT_THROW((void)build_hex_stc(edge), InvalidInput);
 }
 
+TEST(HexStc, RefusesTwoHexesSharingTwoFaces) {
+  // the same hex twice: every face in both, so no chord through them has an order
+  HexComplex twice = test::box_hexes(1, 1, 1).complex;
+  twice.hexes.push_back(twice.hexes[0]);
+  try {
+    (void)build_hex_stc(twice);
+    FAIL() << "two hexes sharing two faces must be refused";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("undefined"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("h0+h1 share two faces"), std::string::npos) << e.what();
+  }
+  // a valid two-hex bar is accepted
+  EXPECT_NO_THROW((void)build_hex_stc(test::box_hexes(2, 1, 1).complex));
+}
+
 TEST(HexStc, EmptyComplexHasAnEmptyStc) {
   const HexStc stc = build_hex_stc(HexComplex{});
   EXPECT_TRUE(stc.sheets.empty());
