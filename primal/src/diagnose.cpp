@@ -91,16 +91,10 @@ bool is_finite_row(const Points& p, Eigen::Index r) {
   return std::isfinite(p(r, 0)) && std::isfinite(p(r, 1)) && std::isfinite(p(r, 2));
 }
 
-/// Surface nodes sharing a cell of the grid of step 1e-9 x the largest bounding-box extent.
-std::size_t count_coincident(const Points& points, const std::vector<NodeId>& nodes) {
+/// Surface nodes sharing a cell of the grid of step 1e-9 x `span`, their largest
+/// bounding-box extent.
+std::size_t count_coincident(const Points& points, const std::vector<NodeId>& nodes, double span) {
   if (nodes.empty()) return 0;
-  Eigen::RowVector3d lo = points.row(nodes.front().value());
-  Eigen::RowVector3d hi = lo;
-  for (NodeId v : nodes) {
-    lo = lo.cwiseMin(points.row(v.value()));
-    hi = hi.cwiseMax(points.row(v.value()));
-  }
-  double span = (hi - lo).maxCoeff();
   if (span == 0.0) span = 1.0;
   const double step = span * 1e-9;
   std::vector<std::array<double, 3>> cells;
@@ -258,7 +252,6 @@ SurfaceDiagnosis diagnose(const MeshFile& file) {
     }
   }
   d.nonfinite_nodes = d.sites.nonfinite_nodes.size();
-  d.coincident_nodes = count_coincident(file.points, finite);
   if (!finite.empty()) {
     Eigen::RowVector3d lo = file.points.row(finite.front().value());
     Eigen::RowVector3d hi = lo;
@@ -269,6 +262,7 @@ SurfaceDiagnosis diagnose(const MeshFile& file) {
     d.coordinate_magnitude = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
     d.extent = (hi - lo).maxCoeff();
   }
+  d.coincident_nodes = count_coincident(file.points, finite, d.extent);
 
   // Handles: which cycles bound inside the solid (needs the embedding, oriented outward).
   if (d.genus && *d.genus > 0 && d.closed && d.manifold && topo.is_orientable() &&

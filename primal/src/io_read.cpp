@@ -35,6 +35,13 @@ namespace {
 
 /// Counts a cell that is neither a quad, a hex, a triangle, a tet nor a line; remembers the
 /// first one's line and kind for the diagnosis.
+/// `text` without a leading UTF-8 byte-order mark (editors on Windows write one); it is no
+/// part of the first token, nor of the content that tells the format.
+std::string_view without_byte_order_mark(std::string_view text) {
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
+  return text;
+}
+
 void note_other_cell(MeshFile& out, std::size_t line, const std::string& what) {
   ++out.other_cells;
   if (out.first_other_cell.empty())
@@ -1901,7 +1908,7 @@ MeshFile read_inp(std::string_view text, const std::string& name) {
 
 /// The format guessed from the first bytes, or Auto.
 Format sniff(std::string_view text) {
-  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);  // UTF-8 byte-order mark
+  text = without_byte_order_mark(text);
   std::size_t i = 0;
   while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
   const std::string_view s = text.substr(i);
@@ -1915,8 +1922,7 @@ Format sniff(std::string_view text) {
 }
 
 MeshFile read_text(std::string_view text, Format format, const std::string& name) {
-  // A UTF-8 byte-order mark (editors on Windows write one) is no part of the first token.
-  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
+  text = without_byte_order_mark(text);
   if (text.empty()) throw InvalidInput(name + ":1: the file is empty; give a mesh file");
   // A file starting with MFEM is MFEM whatever its extension (MFEM uses `.mesh` too).
   if (sniff(text) == Format::Mfem) format = Format::Mfem;

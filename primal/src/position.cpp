@@ -1140,11 +1140,6 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
                        std::to_string(options.max_total_iterations) +
                        "; give 0 (no bound) or a positive count");
   }
-  if (!(options.stall_fraction >= 0.0 && options.stall_fraction <= 1.0)) {
-    throw InvalidInput("position_nodes: stall_fraction is " +
-                       std::to_string(options.stall_fraction) +
-                       ": it must lie in [0, 1] (0: any drop of the inverted corners counts)");
-  }
   // NaN passes every comparison-based range check: each real option is tested as a range.
   const auto require_in = [](const char* name, double value, double lo, double hi,
                              const char* meaning) {
@@ -1153,6 +1148,8 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
                        ": it must lie in [" + short_number(lo) + ", " + short_number(hi) + "] (" +
                        meaning + ")");
   };
+  require_in("stall_fraction", options.stall_fraction, 0.0, 1.0,
+             "0: any drop of the inverted corners counts");
   require_in("theta", options.theta, 0.0, 1.0, "the weight of the volume term");
   require_in("shape_target", options.shape_target, 0.0, 1.0, "a scaled Jacobian");
   require_in("good_start", options.good_start, 0.0, 2.0, "a scaled Jacobian; above 1: never");
