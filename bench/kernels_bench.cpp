@@ -1,6 +1,7 @@
 // The kernels of the pipeline, one at a time, on k x k x k boxes (k = 4 ... 32) and on the
 // largest loop-clean shared surfaces: loop extraction, the cost of one rule application and
-// of one loop shrink (see below), primal recovery, validation of the hex complex.
+// of one loop shrink (see below), primal recovery, validation of the hex complex; and the
+// search for front moves on shared surfaces whose loops cross themselves.
 // (Whole weaves: weave_bench.cpp. Node positioning: position_bench.cpp.)
 //
 // Run: build/bin/stcweave_kernels_bench [--benchmark_filter=...]. Counters: quads, hexes,
@@ -14,6 +15,7 @@
 #include "stcweave/primal/generate.hpp"
 #include "stcweave/primal/io.hpp"
 #include "stcweave/primal/recover.hpp"
+#include "stcweave/stc/loop_moves.hpp"
 #include "stcweave/stc/loops.hpp"
 #include "stcweave/stc/validate.hpp"
 #include "stcweave/weave/weave.hpp"
@@ -133,6 +135,35 @@ void validate_box(benchmark::State& state) {
   if (invalid > 0) state.SkipWithError("the woven box is not a valid complex");
 }
 BENCHMARK(validate_box)->Apply(box_sizes);
+
+// ---- the search for front moves (stc::untangle_loops), default bounds ----
+// Counters: evaluations (candidate moves evaluated), the seconds per evaluation, attached
+// hexes and the self-crossing quads left (0: the loops are simple). rod stops at the
+// evaluation bound with default options, so its time is the bound's cost.
+
+void loop_moves_shared(benchmark::State& state, const std::string& name) {
+  const primal::SurfaceMesh s = shared_surface(name);
+  if (s.surface.quads.empty()) {
+    state.SkipWithError("shared data not found");
+    return;
+  }
+  stc::LoopMoveResult r;
+  for (auto _ : state) {
+    r = stc::untangle_loops(s.surface);
+    benchmark::DoNotOptimize(r.front.quads.data());
+  }
+  state.counters["quads"] = static_cast<double>(s.surface.quads.size());
+  state.counters["evaluations"] = static_cast<double>(r.evaluations);
+  state.counters["s_per_evaluation"] = benchmark::Counter(
+      static_cast<double>(r.evaluations),
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["hexes"] = static_cast<double>(r.hexes.hexes.size());
+  state.counters["self_crossing_left"] = static_cast<double>(r.self_crossing_quads_after);
+}
+BENCHMARK_CAPTURE(loop_moves_shared, cylinder2_c3, std::string("real/gmsh-quad/cylinder2_c3.msh"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(loop_moves_shared, rod, std::string("real/gmsh-quad/rod.msh"))
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -4,6 +4,7 @@
 #include <array>
 #include <deque>
 #include <limits>
+#include <set>
 #include <tuple>
 #include <unordered_map>
 #include <unordered_set>
@@ -13,7 +14,9 @@
 // The search works on its own compact front: face slots (four nodes, outward from the region
 // still to mesh) with, per side, the slot side across it. Faces are never moved, only killed
 // and appended, so slot numbers (and the whole run) are deterministic. A state is copied for
-// every candidate move it evaluates: the copy is O(front) and so is re-tracing the loops.
+// every candidate move it evaluates that leads to a front not seen before (the signature is
+// updated by the move's faces before the copy): the copy is O(front) and so is re-tracing the
+// loops; the preconditions look only at the front and the attached hexes around the move.
 
 namespace stcweave::stc {
 
@@ -77,14 +80,29 @@ struct State {
   std::vector<Slot> nbr;        ///< 4 per slot: slot*4 + side across
   std::vector<Slot> node_face;  ///< per node: a live slot holding it, or kNone
   std::vector<Hex> hexes;
+  /// The attached hexes at each node, as lists through (hex * 8 + corner) entries: the head
+  /// per node and the next entry per hex corner (-1 ends a list). Flat, so a copy is cheap;
+  /// the preconditions look up only the hexes at one node instead of scanning them all.
+  std::vector<std::int32_t> hex_head;
+  std::vector<std::int32_t> hex_next;
   std::vector<AppliedMove> moves;
   std::size_t num_nodes = 0;
   std::size_t live = 0;
+  /// `signature` of the live faces, kept up to date by `apply`.
+  std::uint64_t signature = 0;
   Score score{};
   Rank rank{};               ///< the order a search keeps candidates in
   std::size_t curl_gap = 0;  ///< `LoopMoveOptions::curl_gap_crossings`, from the last evaluation
   std::vector<std::int32_t> face_loop;  ///< 2 per slot, from the last evaluation
   std::vector<std::uint8_t> loop_self;  ///< per loop: crosses itself
+  /// Per loop, the quads where it crosses itself (loops a move took apart keep their entry
+  /// and no live face refers to them), and the score's loop figures: loops with an odd count,
+  /// self-crossing quads, loops that cross themselves. Set by `evaluate`, updated by
+  /// `retrace`.
+  std::vector<std::uint32_t> loop_crossings;
+  std::size_t odd_loops = 0;
+  std::size_t self_quads = 0;
+  std::size_t self_loops = 0;
 };
 
 /// Inserts `t` into `list` (kept sorted by `rank`, equal ranks in insertion order) and keeps
@@ -199,6 +217,12 @@ std::size_t loop_curl_gap(const State& s, const std::vector<std::pair<Slot, int>
   return best == std::numeric_limits<std::size_t>::max() ? 0 : best;
 }
 
+/// The score of `s` from its loop figures and live faces.
+void set_score(State& s, Goal goal) {
+  s.score = goal == Goal::SimpleLoops ? Score{s.odd_loops, s.self_quads, s.self_loops, s.live}
+                                      : Score{s.live, s.self_quads, s.self_loops, 0};
+}
+
 /// Traces every loop; sets face_loop, loop_self and the score. With `curl` (the search's
 /// options), the score's curl gap (`LoopMoveOptions::curl_gap_crossings`); without, 0.
 void evaluate(State& s, Goal goal = Goal::SimpleLoops, const LoopMoveOptions* curl = nullptr) {
@@ -263,8 +287,62 @@ void evaluate(State& s, Goal goal = Goal::SimpleLoops, const LoopMoveOptions* cu
     }
   }
   s.curl_gap = gap;
-  s.score = goal == Goal::SimpleLoops ? Score{odd, self_quads, self_loops, s.live}
-                                      : Score{s.live, self_quads, self_loops, 0};
+  s.loop_crossings.assign(per_loop.begin(), per_loop.end());
+  s.odd_loops = odd;
+  s.self_quads = self_quads;
+  s.self_loops = self_loops;
+  set_score(s, goal);
+}
+
+/// `evaluate` without the curl gap after one `apply` to an evaluated state, in time
+/// proportional to the loops the move changed rather than the front: the loops through the
+/// `removed` faces are taken off the figures, and the loops through the new faces (slots from
+/// `first_new` on) traced afresh; every other loop, and its id, stays. Every strand of a loop
+/// that ran through a removed face now runs through a new face, so tracing from the new faces
+/// reaches all of them. Loop ids then differ from a full evaluation's, which nothing orders
+/// by; the figures, and so the score, are the same.
+void retrace(State& s, const std::vector<Slot>& removed, std::size_t first_new, Goal goal) {
+  std::array<std::int32_t, 12> gone{};
+  std::size_t num_gone = 0;
+  for (const Slot f : removed) {
+    for (std::size_t d = 0; d < 2; ++d) {
+      const std::int32_t l = s.face_loop[2 * static_cast<std::size_t>(f) + d];
+      if (std::find(gone.begin(), gone.begin() + static_cast<std::ptrdiff_t>(num_gone), l) !=
+          gone.begin() + static_cast<std::ptrdiff_t>(num_gone))
+        continue;
+      gone[num_gone++] = l;
+      const std::uint32_t c = s.loop_crossings[static_cast<std::size_t>(l)];
+      s.self_quads -= c;
+      s.self_loops -= c > 0 ? 1 : 0;
+      s.odd_loops -= c % 2;
+    }
+  }
+  const std::size_t n = s.faces.size();
+  s.face_loop.resize(2 * n, -1);
+  const auto first_id = static_cast<std::int32_t>(s.loop_crossings.size());
+  for (std::size_t f = first_new; f < n; ++f) {
+    for (int d = 0; d < 2; ++d) {
+      if (s.face_loop[2 * f + static_cast<std::size_t>(d)] >= first_id) continue;
+      const auto id = static_cast<std::int32_t>(s.loop_crossings.size());
+      std::uint32_t crossings = 0;
+      std::size_t g = f;
+      int entry = d;
+      while (s.face_loop[2 * g + static_cast<std::size_t>(entry % 2)] != id) {
+        s.face_loop[2 * g + static_cast<std::size_t>(entry % 2)] = id;
+        if (s.face_loop[2 * g + static_cast<std::size_t>(1 - entry % 2)] == id) ++crossings;
+        const Slot across = s.nbr[4 * g + static_cast<std::size_t>((entry + 2) % 4)];
+        g = static_cast<std::size_t>(across / 4);
+        entry = across % 4;
+      }
+      s.loop_crossings.push_back(crossings);
+      s.loop_self.push_back(crossings > 0 ? 1 : 0);
+      s.self_quads += crossings;
+      s.self_loops += crossings > 0 ? 1 : 0;
+      s.odd_loops += crossings % 2;
+    }
+  }
+  s.curl_gap = 0;
+  set_score(s, goal);
 }
 
 std::size_t self_crossings(const State& s) {
@@ -317,22 +395,79 @@ bool front_face_on(const State& s, const Quad& q) {
   return found;
 }
 
+/// `LoopMoveOptions::check_scores`: the figures `retrace` left in `s` against a full trace.
+void check_retrace(const State& s, Goal goal) {
+  State full = s;
+  evaluate(full, goal);
+  if (full.score != s.score || full.self_quads != s.self_quads) {
+    throw InternalError(
+        "loop moves: the score updated from the loops a move changed (" +
+        std::to_string(std::get<0>(s.score)) + ", " + std::to_string(std::get<1>(s.score)) + ", " +
+        std::to_string(std::get<2>(s.score)) + ") is not the full trace's (" +
+        std::to_string(std::get<0>(full.score)) + ", " + std::to_string(std::get<1>(full.score)) +
+        ", " + std::to_string(std::get<2>(full.score)) + ")");
+  }
+  // The strands of the live faces fall into the same loops (ids matched one to one), each
+  // with the full trace's crossings.
+  std::unordered_map<std::int32_t, std::int32_t> to_full;
+  std::unordered_map<std::int32_t, std::int32_t> from_full;
+  for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    if (s.alive[f] == 0U) continue;
+    for (std::size_t d = 0; d < 2; ++d) {
+      const std::int32_t a = s.face_loop[2 * f + d];
+      const std::int32_t b = full.face_loop[2 * f + d];
+      const auto mine = static_cast<std::size_t>(a);
+      const auto theirs = static_cast<std::size_t>(b);
+      if (to_full.emplace(a, b).first->second != b || from_full.emplace(b, a).first->second != a ||
+          s.loop_crossings[mine] != full.loop_crossings[theirs] ||
+          s.loop_self[mine] != full.loop_self[theirs]) {
+        throw InternalError(
+            "loop moves: loop figures updated from a move differ from the full "
+            "trace's at face slot " +
+            std::to_string(f));
+      }
+    }
+  }
+}
+
+/// Calls `visit(h)` for every attached hex at node `v`, latest first, until it returns true;
+/// true when one did.
+template <class Visit>
+bool any_hex_at(const State& s, NodeId v, Visit&& visit) {
+  if (v.index() >= s.hex_head.size()) return false;
+  for (std::int32_t e = s.hex_head[v.index()]; e >= 0; e = s.hex_next[static_cast<std::size_t>(e)])
+    if (visit(s.hexes[static_cast<std::size_t>(e / 8)])) return true;
+  return false;
+}
+
 bool hex_edge_on(const State& s, NodeId a, NodeId b) {
-  for (const Hex& h : s.hexes) {
+  return any_hex_at(s, a, [&](const Hex& h) {
     for (const auto& e : kHexEdges) {
       const NodeId x = h[static_cast<std::size_t>(e[0])];
       const NodeId y = h[static_cast<std::size_t>(e[1])];
       if ((x == a && y == b) || (x == b && y == a)) return true;
     }
-  }
-  return false;
+    return false;
+  });
 }
 
 bool hex_face_on(const State& s, const Quad& q) {
-  for (const Hex& h : s.hexes)
+  return any_hex_at(s, q[0], [&](const Hex& h) {
     for (int f = 0; f < 6; ++f)
       if (same_nodes(hex_face(h, f), q)) return true;
-  return false;
+    return false;
+  });
+}
+
+/// Adds `h` to the attached hexes and to the lists of its nodes (`State::hex_head`).
+void add_hex(State& s, const Hex& h) {
+  const auto id = static_cast<std::int32_t>(s.hexes.size());
+  s.hexes.push_back(h);
+  if (s.hex_head.size() < s.num_nodes) s.hex_head.resize(s.num_nodes, -1);
+  for (std::size_t k = 0; k < 8; ++k) {
+    s.hex_next.push_back(s.hex_head[h[k].index()]);
+    s.hex_head[h[k].index()] = 8 * id + static_cast<std::int32_t>(k);
+  }
 }
 
 /// A candidate: the pattern, the front node of every hex local node (invalid: a new node)
@@ -484,42 +619,72 @@ bool try_candidate(const State& s, const Pattern& pattern, std::size_t seed, Slo
   return true;
 }
 
-/// A signature of the front (its faces as sorted node sets, sorted), to skip fronts the
-/// search has already seen.
-std::uint64_t signature(const State& s) {
-  std::vector<std::array<std::int32_t, 4>> keys;
-  keys.reserve(s.live);
-  for (std::size_t f = 0; f < s.faces.size(); ++f) {
-    if (s.alive[f] == 0U) continue;
-    std::array<std::int32_t, 4> k{s.faces[f][0].value(), s.faces[f][1].value(),
-                                  s.faces[f][2].value(), s.faces[f][3].value()};
-    std::sort(k.begin(), k.end());
-    keys.push_back(k);
-  }
-  std::sort(keys.begin(), keys.end());
-  std::uint64_t h = 1469598103934665603ULL;  // FNV-1a over the ids
-  for (const auto& k : keys) {
-    for (const std::int32_t v : k) {
-      h ^= static_cast<std::uint32_t>(v);
-      h *= 1099511628211ULL;
-    }
+/// One face's part of a front's signature: a mix of its nodes as a sorted set (so a face
+/// and its reversal count alike).
+std::uint64_t face_hash(Quad q) {
+  std::sort(q.begin(), q.end());
+  std::uint64_t h = 0x9e3779b97f4a7c15ULL;
+  for (const NodeId v : q) {
+    h ^= static_cast<std::uint32_t>(v.value());
+    // splitmix64's finaliser after each id
+    h += 0x9e3779b97f4a7c15ULL;
+    h = (h ^ (h >> 30U)) * 0xbf58476d1ce4e5b9ULL;
+    h = (h ^ (h >> 27U)) * 0x94d049bb133111ebULL;
+    h ^= h >> 31U;
   }
   return h;
 }
 
+/// A signature of the front, to skip fronts the search has already seen: the sum of its live
+/// faces' `face_hash`, so that it depends on the set of faces only (not on slots) and a move
+/// updates it by its removed and added faces (`signature_after`) without a pass over the
+/// front.
+std::uint64_t signature(const State& s) {
+  std::uint64_t h = 0;
+  for (std::size_t f = 0; f < s.faces.size(); ++f)
+    if (s.alive[f] != 0U) h += face_hash(s.faces[f]);
+  return h;
+}
+
+/// The hex a checked candidate attaches: its mapped nodes, new nodes numbered from
+/// `s.num_nodes` in the order of the hex's corners (as `apply` numbers them).
+Hex hex_of(const State& s, const Candidate& c) {
+  Hex h{};
+  std::size_t next = s.num_nodes;
+  for (std::size_t local = 0; local < 8; ++local)
+    h[local] = c.map[local].is_valid() ? c.map[local] : NodeId(next++);
+  return h;
+}
+
+bool is_chosen(const Pattern& p, int f) {
+  return std::find(p.chosen.begin(), p.chosen.end(), f) != p.chosen.end();
+}
+
+/// The signature of `s` after `apply(s, c)`, without applying it.
+std::uint64_t signature_after(const State& s, const Candidate& c) {
+  const Hex h = hex_of(s, c);
+  std::uint64_t sig = s.signature;
+  for (int u = 0; u < 6; ++u) {
+    if (is_chosen(*c.pattern, u)) {
+      sig -= face_hash(s.faces[static_cast<std::size_t>(c.slot_of[static_cast<std::size_t>(u)])]);
+    } else {
+      sig += face_hash(hex_face(h, u));
+    }
+  }
+  return sig;
+}
+
 /// Applies a checked candidate: the hex, its new nodes, the new front faces and their sides.
 void apply(State& s, const Candidate& c) {
-  Hex h{};
-  for (std::size_t local = 0; local < 8; ++local) {
-    h[local] = c.map[local].is_valid() ? c.map[local] : NodeId(s.num_nodes++);
-  }
+  s.signature = signature_after(s, c);
+  const Hex h = hex_of(s, c);
+  s.num_nodes += static_cast<std::size_t>(
+      std::count_if(c.map.begin(), c.map.end(), [](NodeId v) { return !v.is_valid(); }));
   s.node_face.resize(s.num_nodes, kNone);
   const auto hex_id = static_cast<std::int32_t>(s.hexes.size());
-  s.hexes.push_back(h);
+  add_hex(s, h);
   const Pattern& p = *c.pattern;
-  const auto chosen = [&](int f) {
-    return std::find(p.chosen.begin(), p.chosen.end(), f) != p.chosen.end();
-  };
+  const auto chosen = [&](int f) { return is_chosen(p, f); };
   // New slots for the unchosen faces, reversed (outward from the rest).
   std::array<Slot, 6> new_slot{};
   new_slot.fill(kNone);
@@ -773,7 +938,9 @@ class Search {
                                 std::size_t max_tried) {
     const bool surgeries_only = mode == Mode::Surgery;
     std::vector<State> best;
-    std::vector<std::vector<Slot>> seen;
+    // The (faces, move) of every candidate tried from `s`: one placement may be reached from
+    // several seeds and rotations.
+    std::set<std::array<Slot, 7>> seen;
     std::size_t tried = 0;
     for (const Slot f : hot_faces(s, goal_)) {
       if (tried >= max_tried || exhausted()) break;
@@ -783,23 +950,33 @@ class Search {
           for (int rot = 0; rot < 4; ++rot) {
             Candidate c;
             if (!try_candidate(s, p, seed, f, rot, 3, c)) continue;
-            std::vector<Slot> key;
-            for (const int t : p.chosen) key.push_back(c.slot_of[static_cast<std::size_t>(t)]);
-            std::sort(key.begin(), key.end());
-            key.push_back(static_cast<Slot>(p.move));
-            if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
-            seen.push_back(key);
+            std::array<Slot, 7> key{};
+            key.fill(kNone);
+            for (std::size_t i = 0; i < p.chosen.size(); ++i)
+              key[i] = c.slot_of[static_cast<std::size_t>(p.chosen[i])];
+            std::sort(key.begin(), key.begin() + 6);  // the unused places (kNone) first
+            key[6] = static_cast<Slot>(p.move);
+            if (!seen.insert(key).second) continue;
             if (s.live + 6 - 2 * p.chosen.size() > max_faces_) continue;
-            State next = s;
-            apply(next, c);
             // The surgery look-ahead keeps its own record: the beam may have seen (and
             // dropped, by its order) the very fronts it needs.
             auto& seen_fronts = mode == Mode::Surgery ? seen_surgery_fronts_
                                 : mode == Mode::Slide ? seen_slide_fronts_
                                                       : seen_fronts_;
-            if (!seen_fronts.insert(signature(next)).second) continue;
-            evaluate(next, goal_, mode == Mode::Slide ? &options_ : nullptr);
-            next.moves.back().self_crossing_quads = self_crossings(next);
+            if (!seen_fronts.insert(signature_after(s, c)).second) continue;
+            State next = s;
+            const std::size_t first_new = next.faces.size();
+            apply(next, c);
+            if (mode == Mode::Slide) {
+              evaluate(next, goal_, &options_);
+            } else {
+              std::vector<Slot> removed;
+              for (const int t : p.chosen)
+                removed.push_back(c.slot_of[static_cast<std::size_t>(t)]);
+              retrace(next, removed, first_new, goal_);
+              if (options_.check_scores) check_retrace(next, goal_);
+            }
+            next.moves.back().self_crossing_quads = next.self_quads;
             ++tried;
             ++evaluations_;
             work_ += next.faces.size();
@@ -934,6 +1111,8 @@ State initial_state(const QuadSurface& surface) {
       s.nbr[4 * q + static_cast<std::size_t>(i)] = it->second;
     }
   }
+  s.hex_head.assign(s.num_nodes, -1);
+  s.signature = signature(s);
   evaluate(s);
   return s;
 }
@@ -1104,7 +1283,8 @@ LoopMoveResult fill_front(const LoopMoveResult& start, const LoopMoveOptions& op
   State current = initial_state(start.front);
   for (std::size_t f = 0; f < current.owner.size(); ++f)
     current.owner[f] = start.front_hex[f] >= 0 ? start.front_hex[f] : -start.front_input[f] - 1;
-  current.hexes = start.hexes.hexes;
+  current.num_nodes = std::max(current.num_nodes, start.hexes.num_nodes);
+  for (const Hex& h : start.hexes.hexes) add_hex(current, h);
   current.moves = start.moves;
   evaluate(current, Goal::EmptyFront);
   LoopMoveResult stats;

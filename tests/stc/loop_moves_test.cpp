@@ -102,5 +102,34 @@ TEST(LoopMoves, MovesKeepTheFrontAndTheAttachedHexesValid) {
   EXPECT_GT(simple, 10U);
 }
 
+// The search updates a front's score after each candidate move by re-tracing only the loops
+// the move changed. With `check_scores` it also traces the whole front and throws when the
+// two disagree (score, or which strands share a loop and how often it crosses itself); the
+// search itself must be the same with and without the check.
+TEST(LoopMoves, ScoresUpdatedFromTheChangedLoopsMatchAFullTrace) {
+  std::size_t checked = 0;
+  std::size_t evaluations = 0;
+  for (std::uint32_t seed = 0; seed < 200 && checked < 30; ++seed) {
+    const auto mesh = test::random_quadrangulation(seed, 8 + static_cast<int>(seed % 24), 40);
+    if (!mesh || mesh->surface.quads.size() % 2 == 1) continue;
+    const QuadSurface& s = mesh->surface;
+    if (find_loops(s, {.sides = false}).num_self_intersecting() == 0) continue;
+    LoopMoveOptions options;
+    options.max_evaluations = 3000;
+    const LoopMoveResult plain = untangle_loops(s, options);
+    options.check_scores = true;
+    LoopMoveResult checked_run;
+    ASSERT_NO_THROW(checked_run = untangle_loops(s, options)) << "seed " << seed;
+    ++checked;
+    evaluations += checked_run.evaluations;
+    EXPECT_EQ(checked_run.evaluations, plain.evaluations) << "seed " << seed;
+    EXPECT_EQ(checked_run.hexes.hexes, plain.hexes.hexes) << "seed " << seed;
+    EXPECT_EQ(checked_run.front.quads, plain.front.quads) << "seed " << seed;
+    EXPECT_EQ(checked_run.self_crossing_quads_after, plain.self_crossing_quads_after);
+  }
+  EXPECT_GE(checked, 10U);
+  EXPECT_GT(evaluations, 10000U);  // the check ran on many moves, not a handful
+}
+
 }  // namespace
 }  // namespace stcweave::stc
