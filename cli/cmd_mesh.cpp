@@ -611,7 +611,7 @@ Action add_mesh_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--loop-moves-work", args->loop_moves_work,
                   "loop moves: work bound, the sum over evaluated candidates of the front's "
-                  "faces (about 30 s at the default)")
+                  "faces (about 5 s on a 10,000-quad surface at the default)")
       ->capture_default_str();
   sub->add_flag("--depth-filter-always", args->depth_filter_always,
                 "extended: weave a genus-0 shell with the depth filter from the start (by default "

@@ -43,12 +43,15 @@ TEST(CorpusSelfCrossingSolids, RockerArmIsCutWovenAndGlued) {
   expect_meshed("real/hexalab/cfip2016_rockerarm-hex.boundary.obj");
 }
 
-// Genus 4, 8 self-crossing quads (reference: 4,384 hexes). Its balls' front-move searches give
-// up (measured: 8 hexes attached, 6 of 6 self-crossing quads left); before the shared search
-// budget every disc choice reran a search of its own and the run took minutes. Asserted: it is
-// meshed (a certified complex with the input as boundary) or the disc search ends with a
-// WeaveError (exit code 3) naming the shared budget, never an Unsupported refusal.
-TEST(CorpusSelfCrossingSolids, MedialFertilityMeshesOrGivesUpWithinTheSharedBudget) {
+// Genus 4, 8 self-crossing quads (reference: 4,384 hexes). Its first ball's front-move search
+// gives up (8 hexes attached, 6 of 6 self-crossing quads left); with the shared budget of 4e7
+// face evaluations that used it all up (exit code 3). Since the search updates its scores from
+// the loops a move changed, the budget is 1e9 for about the same wall time, and the fourth
+// cut's ball, at its 29th disc choice, is untangled by 29 attached hexes and woven. Asserted:
+// it is meshed, a certified complex with the input as boundary, with fewer than twice the
+// reference's hexes (measured: 5,040). The untangling is off here (70 hexes stay inverted with
+// it: docs/self-intersecting-loops.md).
+TEST(CorpusSelfCrossingSolids, MedialFertilityIsMeshedWithinTheSharedBudget) {
   const std::string name = "real/medial-hexmeshing/fertility.boundary.obj";
   const auto path = test::shared_data() / name;
   if (!std::filesystem::exists(path)) {
@@ -58,16 +61,12 @@ TEST(CorpusSelfCrossingSolids, MedialFertilityMeshesOrGivesUpWithinTheSharedBudg
   const auto file = primal::read_mesh(path);
   primal::MeshOptions options;
   options.untangle = false;
-  try {
-    const primal::MeshResult r = primal::mesh_file(file, options);
-    EXPECT_TRUE(r.validation.valid) << r.validation.summary();
-    EXPECT_TRUE(r.validation.boundary_compared);
-    std::cout << name << ": " << r.mesh.complex.hexes.size() << " hexes\n";
-  } catch (const WeaveError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("shared budget"), std::string::npos) << what;
-    std::cout << name << ": gave up: " << what.substr(0, 300) << "\n";
-  }
+  const primal::MeshResult r = primal::mesh_file(file, options);
+  EXPECT_TRUE(r.validation.valid) << r.validation.summary();
+  EXPECT_TRUE(r.validation.boundary_compared);
+  EXPECT_GT(r.mesh.complex.hexes.size(), 0u);
+  EXPECT_LT(r.mesh.complex.hexes.size(), 2u * 4384u);
+  std::cout << name << ": " << r.mesh.complex.hexes.size() << " hexes\n";
 }
 
 // Genus 4, two pairs of handles whose shortest cycles share nodes (n0, n24: the skeleton's

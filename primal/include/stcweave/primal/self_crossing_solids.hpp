@@ -20,19 +20,20 @@ namespace stcweave::primal {
 
 /// The search bound shared by every ball one call sends through the front moves: the disc
 /// search of `weave_solids` weaves a new ball per disc choice, and without a shared bound each
-/// reran a search of up to `stc::LoopMoveOptions::max_work` (about 30 s on a 2,000-quad ball),
+/// reran a whole search of up to `stc::LoopMoveOptions::max_work` on each,
 /// so a solid whose searches give up took minutes. Each ball's search gets what is left (and
 /// at most its own `SelfCrossingOptions::search` bounds); a ball is charged its evaluations
 /// times its face count (the work `stc::untangle_loops` counts per evaluation, the front's
 /// faces), or all that was left when the search stopped at that bound. Counted, not timed, so
 /// the outcome does not depend on the machine.
 struct SharedSearchBudget {
-  /// Face evaluations over every ball (the `max_work` unit). Measured: one ball of the medial
-  /// fertility (2,260 faces) used 1e8 in 38 s without finishing, so this is about 15 s of
-  /// search on such a ball.
-  std::size_t work = 40000000;
-  /// Candidate moves evaluated over every ball (the `max_evaluations` unit).
-  std::size_t evaluations = 200000;
+  /// Face evaluations over every ball (the `max_work` unit). Set to about the wall time the
+  /// old bound of 4e7 took before the search updated its scores from the changed loops alone
+  /// (15 s): the medial fertility's balls (about 2,260 faces) ran 3.9e8 of them in 4.5 s,
+  /// and with this budget the solid is meshed (the old one ran out on its first ball).
+  std::size_t work = 1000000000;
+  /// Candidate moves evaluated over every ball (the `max_evaluations` unit; was 2e5).
+  std::size_t evaluations = 1000000;
 };
 
 /// Meshes `mesh` (closed, manifold, oriented outward, every handle cycle even) whose loops

@@ -53,12 +53,14 @@ struct LoopMoveOptions {
   /// The front may not grow beyond the input's quads plus this many faces.
   std::size_t max_extra_faces = 400;
   /// Candidate moves evaluated in all (the search's cost bound).
-  std::size_t max_evaluations = 200000;
+  std::size_t max_evaluations = 1000000;
   /// Work bound: the sum over evaluated candidates of the front's faces (each evaluation
-  /// copies the front and re-traces the loops the move changed). Measured at the default: a
-  /// 10,096-quad surface stops here after 1.8 s, a 716-quad one at `max_evaluations` after
-  /// 2.6 s (before the scores were updated from the changed loops alone: 10.9 s and 21.6 s).
-  std::size_t max_work = 100000000;
+  /// copies the front and re-traces the loops the move changed). Measured at the default:
+  /// `bl3d_5_fine` (10,096 quads) stops here after 5.5 s. The bounds were 2e5 evaluations and
+  /// 1e8 until the score was updated from the changed loops alone; these keep the wall time
+  /// of a search that gives up below what the old ones cost (`bl3d_5_fine` 10.9 s, `rod`
+  /// 21.6 s there; `rod` now stalls after 6.7 s with 26 self-crossing quads left, not 32).
+  std::size_t max_work = 500000000;
   /// Fronts of at most this many faces get the deeper, wider look-ahead below (they are
   /// cheap to evaluate and the moves they need are longer).
   std::size_t small_front = 48;
