@@ -297,10 +297,14 @@ void evaluate(State& s, Goal goal = Goal::SimpleLoops, const LoopMoveOptions* cu
 /// `evaluate` without the curl gap after one `apply` to an evaluated state, in time
 /// proportional to the loops the move changed rather than the front: the loops through the
 /// `removed` faces are taken off the figures, and the loops through the new faces (slots from
-/// `first_new` on) traced afresh; every other loop, and its id, stays. Every strand of a loop
-/// that ran through a removed face now runs through a new face, so tracing from the new faces
-/// reaches all of them. Loop ids then differ from a full evaluation's, which nothing orders
-/// by; the figures, and so the score, are the same.
+/// `first_new` on) traced afresh; every other loop, and its id, stays. Every surviving strand
+/// of a loop that ran through a removed face is now on a loop through a new face (the face
+/// across the side it shared with the removed face is new), so tracing from the new faces
+/// reaches all of them; a loop lying wholly in the removed faces (around a tube, on a cap, a
+/// closed component) just disappears. Loop ids then differ from a full evaluation's, which
+/// nothing orders by; the figures, and so the score, are the same.
+/// \pre `s` is a state whose loops were traced (`evaluate` or `retrace`) with exactly one
+///      `apply` since, which removed the faces `removed` and appended slots from `first_new`.
 void retrace(State& s, const std::vector<Slot>& removed, std::size_t first_new, Goal goal) {
   std::array<std::int32_t, 12> gone{};
   std::size_t num_gone = 0;
@@ -396,17 +400,24 @@ bool front_face_on(const State& s, const Quad& q) {
 }
 
 /// `LoopMoveOptions::check_scores`: the figures `retrace` left in `s` against a full trace.
+std::uint64_t signature(const State& s);
+
 void check_retrace(const State& s, Goal goal) {
   State full = s;
   evaluate(full, goal);
-  if (full.score != s.score || full.self_quads != s.self_quads) {
-    throw InternalError(
-        "loop moves: the score updated from the loops a move changed (" +
-        std::to_string(std::get<0>(s.score)) + ", " + std::to_string(std::get<1>(s.score)) + ", " +
-        std::to_string(std::get<2>(s.score)) + ") is not the full trace's (" +
-        std::to_string(std::get<0>(full.score)) + ", " + std::to_string(std::get<1>(full.score)) +
-        ", " + std::to_string(std::get<2>(full.score)) + ")");
+  const auto words = [](const State& x) {
+    return "(" + std::to_string(std::get<0>(x.score)) + ", " +
+           std::to_string(std::get<1>(x.score)) + ", " + std::to_string(std::get<2>(x.score)) +
+           ", " + std::to_string(std::get<3>(x.score)) + "; odd loops " +
+           std::to_string(x.odd_loops) + ")";
+  };
+  if (full.score != s.score || full.self_quads != s.self_quads || full.odd_loops != s.odd_loops ||
+      full.self_loops != s.self_loops) {
+    throw InternalError("loop moves: the score updated from the loops a move changed " + words(s) +
+                        " is not the full trace's " + words(full));
   }
+  if (signature(s) != s.signature)
+    throw InternalError("loop moves: the front's signature updated by the move is not its own");
   // The strands of the live faces fall into the same loops (ids matched one to one), each
   // with the full trace's crossings.
   std::unordered_map<std::int32_t, std::int32_t> to_full;
@@ -1280,6 +1291,15 @@ LoopMoveResult untangle_loops(const QuadSurface& surface, const LoopMoveOptions&
 }
 
 LoopMoveResult fill_front(const LoopMoveResult& start, const LoopMoveOptions& options) {
+  for (std::size_t h = 0; h < start.hexes.hexes.size(); ++h) {
+    for (const NodeId v : start.hexes.hexes[h]) {
+      if (!v.is_valid() || v.index() >= start.hexes.num_nodes) {
+        throw InvalidInput("fill_front: attached hex h" + std::to_string(h) +
+                           " has a node out of range (" + std::to_string(start.hexes.num_nodes) +
+                           " nodes): `start` must be a result of untangle_loops");
+      }
+    }
+  }
   State current = initial_state(start.front);
   for (std::size_t f = 0; f < current.owner.size(); ++f)
     current.owner[f] = start.front_hex[f] >= 0 ? start.front_hex[f] : -start.front_input[f] - 1;
