@@ -16,6 +16,7 @@
 #include "stcweave/primal/valence_stats.hpp"
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/stc/hex_stc.hpp"
+#include "stcweave/stc/loop_moves.hpp"
 #include "stcweave/viewer/page.hpp"
 #include "weave_options.hpp"
 
@@ -265,6 +266,14 @@ int run_mesh(const MeshArgs& a) {
     options.weave.progress = [](const weave::WeaveProgress& p) {
       std::cerr << "stcweave: weaving: " << p.hexes << " hexes, " << p.front_faces
                 << " front faces left, " << p.loops_shrunk << " loops shrunk\n";
+    };
+    // The search for front moves (surfaces whose loops cross themselves): every 10th hex it
+    // attaches and every 50,000 moves it evaluates.
+    options.self_crossing.search.progress = [](const stc::LoopMoveProgress& p) {
+      std::cerr << "stcweave: front moves (" << (p.filling ? "filling" : "untangling")
+                << "): " << p.hexes << " hexes attached, " << p.self_crossing_quads
+                << " self-crossing quads left, " << p.front_faces << " front faces, "
+                << p.evaluations << " moves evaluated\n";
     };
     // Every untangling round (each can take seconds); the first sweep of the local phases
     // and every tenth (a sweep is short, and there are up to a hundred).
@@ -717,8 +726,8 @@ Action add_mesh_command(CLI::App& app) {
                   "also write the browser page of the mesh (self-contained HTML, three.js "
                   "inlined): replay of the weave, sheets, quality; see `stcweave view`");
   sub->add_flag("--progress", args->progress,
-                "print stage, weaving and positioning progress on stderr (the default on a "
-                "terminal unless -q)");
+                "print stage, front-move search, weaving and positioning progress on stderr "
+                "(the default on a terminal unless -q)");
   sub->add_flag("-q,--quiet", args->quiet, "print nothing on success");
   return [args] { return run_mesh(*args); };
 }

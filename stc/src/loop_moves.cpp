@@ -989,7 +989,7 @@ class Search {
             }
             next.moves.back().self_crossing_quads = next.self_quads;
             ++tried;
-            ++evaluations_;
+            count_evaluation();
             work_ += next.faces.size();
             next.rank = mode == Mode::Surgery ? surgery_rank(next.score)
                         : mode == Mode::Slide ? slide_rank(next)
@@ -1014,7 +1014,7 @@ class Search {
       State next = s;
       if (!apply_tunnel(next, st, false)) continue;
       evaluate(next, goal_);
-      ++evaluations_;
+      count_evaluation();
       work_ += next.faces.size() * m;
       next.rank = surgery_rank(next.score);
       const auto pos = std::upper_bound(
@@ -1061,12 +1061,23 @@ class Search {
   }
 
   [[nodiscard]] std::size_t evaluations() const { return evaluations_; }
+  /// Called every `LoopMoveOptions::progress_every` evaluations when the options have a
+  /// progress callback (the caller reports its own current front).
+  void on_tick(std::function<void()> tick) { tick_ = std::move(tick); }
+
   [[nodiscard]] bool exhausted() const {
     return evaluations_ >= options_.max_evaluations || work_ >= options_.max_work;
   }
 
  private:
+  void count_evaluation() {
+    ++evaluations_;
+    if (tick_ && options_.progress_every > 0 && evaluations_ % options_.progress_every == 0)
+      tick_();
+  }
+
   const LoopMoveOptions& options_;
+  std::function<void()> tick_;
   std::size_t max_faces_;
   Goal goal_;
   std::size_t evaluations_ = 0;
@@ -1155,6 +1166,24 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
   const auto done = [&](const State& s) {
     return goal == Goal::SimpleLoops ? std::get<1>(s.score) == 0 : s.live == 0;
   };
+  // Progress: every 10th attached hex (checked after each step, which may attach several)
+  // and, through the search, every `progress_every` evaluations.
+  std::size_t reported_tens = current.moves.size() / 10;
+  const auto report = [&] {
+    LoopMoveProgress p;
+    p.filling = goal == Goal::EmptyFront;
+    p.hexes = current.moves.size();
+    p.self_crossing_quads = current.self_quads;
+    p.front_faces = current.live;
+    p.evaluations = search.evaluations();
+    options.progress(p);
+  };
+  if (options.progress) search.on_tick(report);
+  const auto after_step = [&] {
+    if (!options.progress || current.moves.size() / 10 == reported_tens) return;
+    reported_tens = current.moves.size() / 10;
+    report();
+  };
   // The part of the score the beam must lower (the goal's own figures).
   const auto key = [](const State& s) {
     return std::make_tuple(std::get<0>(s.score), std::get<1>(s.score));
@@ -1163,6 +1192,7 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
   bool sliding = false;  // a curl slide was taken and (odd loops, self-crossings) not lowered
   std::tuple<std::size_t, std::size_t> sliding_from{};
   while (!done(current)) {
+    after_step();
     if (current.moves.size() >= options.max_moves) {
       stop = "move bound (" + std::to_string(options.max_moves) + " moves) reached";
       break;

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "stcweave/primal/io.hpp"
+#include "stcweave/stc/loop_moves.hpp"
 #include "stcweave/stc/loops.hpp"
 #include "support/cli_run.hpp"
 #include "support/quadrangulations.hpp"
@@ -59,6 +60,29 @@ TEST(SelfCrossingCli, AGivenUpSearchExitsWith3AndLeavesTheFront) {
   EXPECT_NE(off.out.find("crosses itself"), std::string::npos) << off.out;
   std::filesystem::remove(in);
   std::filesystem::remove(front);
+}
+
+// With --progress the search for front moves says how far it got (every 10th attached hex):
+// a generated sphere whose search attaches at least 10 hexes prints such a line, and the
+// run's outcome (exit code, mesh) is the same as without --progress.
+TEST(SelfCrossingCli, ProgressShowsTheFrontMoves) {
+  std::optional<primal::SurfaceMesh> busy;
+  for (std::uint32_t seed = 0; seed < 200 && !busy; ++seed) {
+    auto m = test::random_quadrangulation(seed, 16 + static_cast<int>(seed % 10), 60);
+    if (!m || m->surface.quads.size() % 2 == 1) continue;
+    if (stc::untangle_loops(m->surface).hexes.hexes.size() >= 10) busy = std::move(m);
+  }
+  ASSERT_TRUE(busy.has_value()) << "no generated sphere needs 10 attached hexes";
+  const auto in = temp("busy.obj");
+  primal::write_surface(*busy, in);
+  const std::string base = "mesh " + in.string() + " --no-untangle -o ";
+  const test::CliRun with = test::run_cli(base + temp("busy_p.vtk").string() + " --progress");
+  const test::CliRun without = test::run_cli(base + temp("busy_q.vtk").string() + " -q");
+  EXPECT_NE(with.out.find("front moves (untangling): 10 hexes attached"), std::string::npos)
+      << with.out;
+  EXPECT_EQ(without.out.find("front moves"), std::string::npos) << without.out;
+  EXPECT_EQ(with.code, without.code) << with.out << without.out;
+  std::filesystem::remove(in);
 }
 
 }  // namespace

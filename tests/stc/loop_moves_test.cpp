@@ -160,6 +160,44 @@ TEST(LoopMoves, ScoresStayRightWhileFillingAFront) {
   EXPECT_GE(filled, 3U);  // the boxes at least: fills that ran to the end, closes included
 }
 
+// The progress callback: called every 10th attached hex and every `progress_every`
+// evaluations, with figures that never go back (hexes and evaluations), the last no further
+// than the result; the search is the same with and without it.
+TEST(LoopMoves, ProgressIsReportedAndChangesNothing) {
+  std::size_t searched = 0;
+  std::size_t reports = 0;
+  for (std::uint32_t seed = 0; seed < 200 && searched < 10; ++seed) {
+    const auto mesh = test::random_quadrangulation(seed, 16 + static_cast<int>(seed % 10), 60);
+    if (!mesh || mesh->surface.quads.size() % 2 == 1) continue;
+    if (find_loops(mesh->surface, {.sides = false}).num_self_intersecting() == 0) continue;
+    LoopMoveOptions options;
+    options.max_evaluations = 3000;
+    const LoopMoveResult plain = untangle_loops(mesh->surface, options);
+    std::vector<LoopMoveProgress> seen;
+    options.progress = [&](const LoopMoveProgress& p) { seen.push_back(p); };
+    options.progress_every = 200;
+    const LoopMoveResult reported = untangle_loops(mesh->surface, options);
+    ++searched;
+    EXPECT_EQ(reported.hexes.hexes, plain.hexes.hexes) << "seed " << seed;
+    EXPECT_EQ(reported.evaluations, plain.evaluations) << "seed " << seed;
+    if (plain.evaluations >= 200 || plain.hexes.hexes.size() >= 10) {
+      EXPECT_FALSE(seen.empty()) << "seed " << seed;
+    }
+    for (std::size_t i = 0; i < seen.size(); ++i) {
+      EXPECT_FALSE(seen[i].filling);
+      EXPECT_LE(seen[i].hexes, reported.hexes.hexes.size());
+      EXPECT_LE(seen[i].evaluations, reported.evaluations);
+      if (i > 0) {
+        EXPECT_GE(seen[i].hexes, seen[i - 1].hexes) << "seed " << seed;
+        EXPECT_GE(seen[i].evaluations, seen[i - 1].evaluations) << "seed " << seed;
+      }
+    }
+    reports += seen.size();
+  }
+  EXPECT_GE(searched, 5U);
+  EXPECT_GT(reports, 10U);
+}
+
 TEST(LoopMoves, FillFrontRefusesAttachedHexesWithNodesOutOfRange) {
   const QuadSurface s = test::box_surface(1, 1, 1).surface;
   LoopMoveResult start = untangle_loops(s);

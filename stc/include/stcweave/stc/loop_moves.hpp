@@ -18,6 +18,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,15 @@ enum class FrontMove : std::uint8_t {
 
 /// "bump", "blind-chord", "cross", "surgery", "bigon", "tube", "cap", "close".
 [[nodiscard]] std::string to_string(FrontMove move);
+
+/// Progress of a search, given to `LoopMoveOptions::progress` now and then.
+struct LoopMoveProgress {
+  bool filling = false;                 ///< `fill_front` (goal: no front left), not untangling
+  std::size_t hexes = 0;                ///< attached so far
+  std::size_t self_crossing_quads = 0;  ///< on the front now
+  std::size_t front_faces = 0;          ///< on the front now
+  std::size_t evaluations = 0;          ///< candidate moves this search has evaluated so far
+};
 
 /// Bounds of the search. Every bound is a hard limit; the search says which one stopped it.
 struct LoopMoveOptions {
@@ -110,6 +120,11 @@ struct LoopMoveOptions {
   /// updates the score by re-tracing only those); a difference throws `InternalError`. Slow:
   /// a full trace per evaluation, as the search did before it updated scores.
   bool check_scores = false;
+  /// Called when set: every 10th hex attached, and every `progress_every` evaluations (a
+  /// look-ahead can evaluate for seconds without attaching a hex). Reports only; the search
+  /// is the same with or without it.
+  std::function<void(const LoopMoveProgress&)> progress;
+  std::size_t progress_every = 50000;
 };
 
 /// One move of the search, as applied.
