@@ -94,11 +94,10 @@ struct State {
   Rank rank{};               ///< the order a search keeps candidates in
   std::size_t curl_gap = 0;  ///< `LoopMoveOptions::curl_gap_crossings`, from the last evaluation
   std::vector<std::int32_t> face_loop;  ///< 2 per slot, from the last evaluation
-  std::vector<std::uint8_t> loop_self;  ///< per loop: crosses itself
-  /// Per loop, the quads where it crosses itself (loops a move took apart keep their entry
-  /// and no live face refers to them), and the score's loop figures: loops with an odd count,
-  /// self-crossing quads, loops that cross themselves. Set by `evaluate`, updated by
-  /// `retrace`.
+  /// Per loop, the quads where it crosses itself (> 0: the loop crosses itself; loops a move
+  /// took apart keep their entry and no live face refers to them), and the score's loop
+  /// figures: loops with an odd count, self-crossing quads, loops that cross themselves. Set
+  /// by `evaluate`, updated by `retrace`.
   std::vector<std::uint32_t> loop_crossings;
   std::size_t odd_loops = 0;
   std::size_t self_quads = 0;
@@ -223,14 +222,12 @@ void set_score(State& s, Goal goal) {
                                       : Score{s.live, s.self_quads, s.self_loops, 0};
 }
 
-/// Traces every loop; sets face_loop, loop_self and the score. With `curl` (the search's
+/// Traces every loop; sets face_loop, the loop figures and the score. With `curl` (the search's
 /// options), the score's curl gap (`LoopMoveOptions::curl_gap_crossings`); without, 0.
 void evaluate(State& s, Goal goal = Goal::SimpleLoops, const LoopMoveOptions* curl = nullptr) {
   const std::size_t curl_crossings = curl != nullptr ? curl->curl_gap_crossings : 0;
   const std::size_t n = s.faces.size();
   s.face_loop.assign(2 * n, -1);
-  s.loop_self.clear();
-  std::size_t self_quads = 0;
   std::int32_t loops = 0;
   const bool curls = curl_crossings > 0 && goal == Goal::SimpleLoops;
   // With the curl gap: every loop's passes in travel order, and where each loop starts.
@@ -253,22 +250,19 @@ void evaluate(State& s, Goal goal = Goal::SimpleLoops, const LoopMoveOptions* cu
       ++loops;
     }
   }
-  s.loop_self.assign(static_cast<std::size_t>(loops), 0);
+  std::vector<std::uint32_t>& per_loop = s.loop_crossings;
+  per_loop.assign(static_cast<std::size_t>(loops), 0);
+  s.self_quads = 0;
   for (std::size_t f = 0; f < n; ++f) {
-    if (s.alive[f] == 0U) continue;
-    if (s.face_loop[2 * f] == s.face_loop[2 * f + 1]) {
-      ++self_quads;
-      s.loop_self[static_cast<std::size_t>(s.face_loop[2 * f])] = 1;
+    if (s.alive[f] != 0U && s.face_loop[2 * f] == s.face_loop[2 * f + 1]) {
+      ++s.self_quads;
+      ++per_loop[static_cast<std::size_t>(s.face_loop[2 * f])];
     }
   }
-  const auto self_loops = static_cast<std::size_t>(
-      std::count(s.loop_self.begin(), s.loop_self.end(), static_cast<std::uint8_t>(1)));
-  std::vector<std::size_t> per_loop(static_cast<std::size_t>(loops), 0);
-  for (std::size_t f = 0; f < n; ++f)
-    if (s.alive[f] != 0U && s.face_loop[2 * f] == s.face_loop[2 * f + 1])
-      ++per_loop[static_cast<std::size_t>(s.face_loop[2 * f])];
-  const auto odd = static_cast<std::size_t>(
-      std::count_if(per_loop.begin(), per_loop.end(), [](std::size_t c) { return c % 2 == 1; }));
+  s.self_loops = static_cast<std::size_t>(
+      std::count_if(per_loop.begin(), per_loop.end(), [](std::uint32_t c) { return c > 0; }));
+  s.odd_loops = static_cast<std::size_t>(
+      std::count_if(per_loop.begin(), per_loop.end(), [](std::uint32_t c) { return c % 2 == 1; }));
   std::size_t gap = 0;
   if (curls) {
     loop_start.push_back(passes.size());
@@ -287,10 +281,6 @@ void evaluate(State& s, Goal goal = Goal::SimpleLoops, const LoopMoveOptions* cu
     }
   }
   s.curl_gap = gap;
-  s.loop_crossings.assign(per_loop.begin(), per_loop.end());
-  s.odd_loops = odd;
-  s.self_quads = self_quads;
-  s.self_loops = self_loops;
   set_score(s, goal);
 }
 
@@ -339,7 +329,6 @@ void retrace(State& s, const std::vector<Slot>& removed, std::size_t first_new, 
         entry = across % 4;
       }
       s.loop_crossings.push_back(crossings);
-      s.loop_self.push_back(crossings > 0 ? 1 : 0);
       s.self_quads += crossings;
       s.self_loops += crossings > 0 ? 1 : 0;
       s.odd_loops += crossings % 2;
@@ -347,13 +336,6 @@ void retrace(State& s, const std::vector<Slot>& removed, std::size_t first_new, 
   }
   s.curl_gap = 0;
   set_score(s, goal);
-}
-
-std::size_t self_crossings(const State& s) {
-  std::size_t n = 0;
-  for (std::size_t f = 0; f < s.faces.size(); ++f)
-    if (s.alive[f] != 0U && s.face_loop[2 * f] == s.face_loop[2 * f + 1]) ++n;
-  return n;
 }
 
 /// The faces around node `v` in order (walking across the side leaving v), and their count.
@@ -430,8 +412,7 @@ void check_retrace(const State& s, Goal goal) {
       const auto mine = static_cast<std::size_t>(a);
       const auto theirs = static_cast<std::size_t>(b);
       if (to_full.emplace(a, b).first->second != b || from_full.emplace(b, a).first->second != a ||
-          s.loop_crossings[mine] != full.loop_crossings[theirs] ||
-          s.loop_self[mine] != full.loop_self[theirs]) {
+          s.loop_crossings[mine] != full.loop_crossings[theirs]) {
         throw InternalError(
             "loop moves: loop figures updated from a move differ from the full "
             "trace's at face slot " +
@@ -773,8 +754,8 @@ std::vector<Slot> hot_faces(const State& s, Goal goal) {
     const Slot f = queue.front();
     queue.pop_front();
     const auto fi = static_cast<std::size_t>(f);
-    const bool hot = s.loop_self[static_cast<std::size_t>(s.face_loop[2 * fi])] != 0U ||
-                     s.loop_self[static_cast<std::size_t>(s.face_loop[2 * fi + 1])] != 0U;
+    const bool hot = s.loop_crossings[static_cast<std::size_t>(s.face_loop[2 * fi])] > 0 ||
+                     s.loop_crossings[static_cast<std::size_t>(s.face_loop[2 * fi + 1])] > 0;
     if (hot) order.push_back(f);
     for (int i = 0; i < 4; ++i) {
       const Slot g = s.nbr[4 * fi + static_cast<std::size_t>(i)] / 4;
@@ -822,7 +803,7 @@ std::vector<Strip> tunnel_strips(const State& s, std::size_t length, std::size_t
     for (int dl = 0; dl < 2; ++dl) {
       const std::int32_t l = s.face_loop[2 * f + static_cast<std::size_t>(dl)];
       const std::int32_t loop_p = s.face_loop[2 * f + static_cast<std::size_t>(1 - dl)];
-      if (s.loop_self[static_cast<std::size_t>(l)] == 0U || l == loop_p) continue;
+      if (s.loop_crossings[static_cast<std::size_t>(l)] == 0 || l == loop_p) continue;
       for (const int exit0 : {1 - dl, 3 - dl}) {
         Strip st;
         st.faces.push_back(static_cast<Slot>(f));
@@ -839,7 +820,7 @@ std::vector<Strip> tunnel_strips(const State& s, std::size_t length, std::size_t
           st.faces.push_back(static_cast<Slot>(g));
           st.enter.push_back(k);
           const std::int32_t t = s.face_loop[2 * g + static_cast<std::size_t>(1 - k % 2)];
-          if (s.loop_self[static_cast<std::size_t>(t)] != 0U) {
+          if (s.loop_crossings[static_cast<std::size_t>(t)] > 0) {
             if (st.faces.size() >= 3 && st.faces.front() < st.faces.back()) out.push_back(st);
             if (++seen_hits > hits) break;
           }
@@ -901,7 +882,7 @@ bool apply_tunnel(State& s, const Strip& strip, bool trace) {
     apply(s, c);
     if (trace) {
       evaluate(s);
-      s.moves.back().self_crossing_quads = self_crossings(s);
+      s.moves.back().self_crossing_quads = s.self_quads;
     }
     if (last) break;
     // The new face of hex i on the edge F(i) shared with F(i+1): the next hex's other face.
