@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <deque>
+#include <functional>
 #include <limits>
 #include <set>
 #include <tuple>
@@ -1041,6 +1042,73 @@ class Search {
     return true;
   }
 
+  /// Iterative deepening over every move of every face (its own record of fronts: per
+  /// signature, the most moves left it was searched with), up to `max_depth` moves and
+  /// `max_evaluations` evaluations: the first front found whose (odd loops, self-crossing
+  /// quads) or (front faces, self-crossing quads) is below `s`'s. True and `out` set when
+  /// found.
+  bool deepen(const State& s, std::size_t max_depth, std::size_t max_evaluations, State& out) {
+    const auto key = [](const State& x) {
+      return std::make_pair(std::get<0>(x.score), std::get<1>(x.score));
+    };
+    const auto target = key(s);
+    std::unordered_map<std::uint64_t, std::size_t> table;
+    std::size_t spent = 0;
+    std::vector<Slot> all;
+    const std::function<bool(const State&, std::size_t)> dfs = [&](const State& x,
+                                                                   std::size_t left) -> bool {
+      if (left == 0) return false;
+      std::set<std::array<Slot, 7>> seen;
+      for (std::size_t f = 0; f < x.faces.size(); ++f) {
+        if (x.alive[f] == 0U) continue;
+        for (const Pattern& p : patterns()) {
+          for (std::size_t seed = 0; seed < p.chosen.size(); ++seed) {
+            for (int rot = 0; rot < 4; ++rot) {
+              if (spent >= max_evaluations || exhausted()) return false;
+              Candidate c;
+              if (!try_candidate(x, p, seed, static_cast<Slot>(f), rot, 3, c)) continue;
+              std::array<Slot, 7> k{};
+              k.fill(kNone);
+              for (std::size_t i = 0; i < p.chosen.size(); ++i)
+                k[i] = c.slot_of[static_cast<std::size_t>(p.chosen[i])];
+              std::sort(k.begin(), k.begin() + 6);
+              k[6] = static_cast<Slot>(p.move);
+              if (!seen.insert(k).second) continue;
+              if (x.live + 6 - 2 * p.chosen.size() > max_faces_) continue;
+              const std::uint64_t sig = signature_after(x, c);
+              const auto it = table.find(sig);
+              if (it != table.end() && it->second >= left - 1) continue;
+              table[sig] = left - 1;
+              State next = x;
+              const std::size_t first_new = next.faces.size();
+              apply(next, c);
+              std::vector<Slot> removed;
+              for (const int t : p.chosen) removed.push_back(c.slot_of[static_cast<std::size_t>(t)]);
+              retrace(next, removed, first_new, goal_);
+              if (options_.check_scores) check_retrace(next, goal_);
+              next.moves.back().self_crossing_quads = next.self_quads;
+              ++spent;
+              count_evaluation();
+              work_ += next.faces.size();
+              if (key(next) < target) {
+                out = std::move(next);
+                return true;
+              }
+              if (dfs(next, left - 1)) return true;
+            }
+          }
+        }
+      }
+      return false;
+    };
+    for (std::size_t depth = 1; depth <= max_depth; ++depth) {
+      table.clear();
+      if (dfs(s, depth)) return true;
+      if (spent >= max_evaluations || exhausted()) return false;
+    }
+    return false;
+  }
+
   [[nodiscard]] std::size_t evaluations() const { return evaluations_; }
   /// Called every `LoopMoveOptions::progress_every` evaluations when the options have a
   /// progress callback (the caller reports its own current front).
@@ -1265,6 +1333,16 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
         }
       }
     }
+    if (!improved && current.live <= options.tiny_front && options.tiny_depth > 0) {
+      State found;
+      // The move bound holds through it as through the beam (`depth_bound`).
+      const std::size_t depth = std::min(options.tiny_depth, options.max_moves - current.moves.size());
+      if (search.deepen(current, depth, options.tiny_evaluations, found)) {
+        current = std::move(found);
+        improved = true;
+        ++r.deepenings;
+      }
+    }
     if (!improved && search.exhausted()) {
       stop = "evaluation bound (" + std::to_string(options.max_evaluations) + " moves or " +
              std::to_string(options.max_work) + " face evaluations) reached";
@@ -1297,6 +1375,7 @@ LoopMoveResult untangle_loops(const QuadSurface& surface, const LoopMoveOptions&
   r.surgery_searches = stats.surgery_searches;
   r.tunnels = stats.tunnels;
   r.curl_slides = stats.curl_slides;
+  r.deepenings = stats.deepenings;
   r.stop_reason = stats.stop_reason;
   return r;
 }
@@ -1327,6 +1406,7 @@ LoopMoveResult fill_front(const LoopMoveResult& start, const LoopMoveOptions& op
   r.surgery_searches = start.surgery_searches + stats.surgery_searches;
   r.tunnels = start.tunnels + stats.tunnels;
   r.curl_slides = start.curl_slides + stats.curl_slides;
+  r.deepenings = start.deepenings + stats.deepenings;
   r.stop_reason = stats.stop_reason;
   r.simple = current.live == 0;
   return r;

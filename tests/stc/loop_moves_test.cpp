@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/stc/loops.hpp"
 #include "stcweave/stc/validate.hpp"
@@ -196,6 +199,48 @@ TEST(LoopMoves, ProgressIsReportedAndChangesNothing) {
   }
   EXPECT_GE(searched, 5U);
   EXPECT_GT(reports, 10U);
+}
+
+// Seed 120 of the generated catalogue (16 quads, two loops with one curl each): every
+// look-ahead of the search stalls with two self-crossing quads left, and the iterative
+// deepening over every move of the tiny front (`LoopMoveOptions::tiny_front`) finds a
+// sequence that leaves the loops simple. The moves keep the front and the hexes valid.
+TEST(LoopMoves, TheDeepeningUntanglesATinyFrontTheLookAheadsLeave) {
+  const auto mesh = test::random_quadrangulation(120, 8 + 120 % 14, 40);
+  ASSERT_TRUE(mesh.has_value());
+  const QuadSurface& s = mesh->surface;
+  ASSERT_EQ(s.quads.size(), 16U);
+  ASSERT_GT(find_loops(s, {.sides = false}).num_self_intersecting(), 0U);
+
+  LoopMoveOptions without;
+  without.tiny_depth = 0;
+  const LoopMoveResult stalled = untangle_loops(s, without);
+  EXPECT_FALSE(stalled.simple) << "the look-aheads alone untangle it now: pick another surface";
+  EXPECT_EQ(stalled.deepenings, 0U);
+  EXPECT_NE(stalled.stop_reason.find("no sequence"), std::string::npos) << stalled.stop_reason;
+
+  const LoopMoveResult r = untangle_loops(s);
+  ASSERT_TRUE(r.simple) << r.stop_reason;
+  EXPECT_GE(r.deepenings, 1U);
+  EXPECT_EQ(r.self_crossing_quads_after, 0U);
+  EXPECT_EQ(find_loops(r.front, {.sides = false}).num_self_intersecting(), 0U);
+  EXPECT_TRUE(test::is_strong_quadrangulation(r.front));
+  // One hex per move, eight distinct nodes each (the whole stage's complex is certified by
+  // SelfCrossing.GeneratedSpheresGiveCertifiedComplexesOrCleanRefusals).
+  EXPECT_EQ(r.hexes.hexes.size(), r.moves.size());
+  for (const Hex& h : r.hexes.hexes) {
+    std::array<NodeId, 8> nodes = h;
+    std::sort(nodes.begin(), nodes.end());
+    EXPECT_EQ(std::adjacent_find(nodes.begin(), nodes.end()), nodes.end());
+  }
+
+  // Same answer twice (determinism), and a deepening bounded to no evaluation finds nothing.
+  const LoopMoveResult again = untangle_loops(s);
+  EXPECT_EQ(again.hexes.hexes, r.hexes.hexes);
+  EXPECT_EQ(again.front.quads, r.front.quads);
+  LoopMoveOptions starved;
+  starved.tiny_evaluations = 0;
+  EXPECT_FALSE(untangle_loops(s, starved).simple);
 }
 
 TEST(LoopMoves, FillFrontRefusesAttachedHexesWithNodesOutOfRange) {

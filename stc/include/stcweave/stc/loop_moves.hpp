@@ -115,6 +115,12 @@ struct LoopMoveOptions {
   bool curl_gap_opposite = false;
   std::size_t curl_slide_depth = 3;
   std::size_t curl_slide_width = 8;
+  /// Fronts of at most `tiny_front` faces, when every look-ahead above found nothing: an
+  /// iterative deepening over every move of every face, up to `tiny_depth` moves and
+  /// `tiny_evaluations` evaluations. 0 depth: off.
+  std::size_t tiny_front = 24;
+  std::size_t tiny_depth = 8;
+  std::size_t tiny_evaluations = 300000;
   /// For debugging and tests: after every candidate move, trace the whole front again and
   /// compare its score with the one updated from the loops the move changed (the search
   /// updates the score by re-tracing only those); a difference throws `InternalError`. Slow:
@@ -158,6 +164,7 @@ struct LoopMoveResult {
   std::size_t surgery_searches = 0;  ///< surgery look-aheads run (the beam found nothing)
   std::size_t tunnels = 0;           ///< tunnels applied (rows of hexes, each one step)
   std::size_t curl_slides = 0;       ///< curl slides accepted (`LoopMoveOptions::curl_slide_depth`)
+  std::size_t deepenings = 0;        ///< iterative deepenings that lowered (`tiny_front`)
   /// True when no loop of `front` crosses itself.
   bool simple = false;
   /// Why the search stopped ("simple", or which bound).
