@@ -166,8 +166,11 @@ struct PositionOptions {
   /// min(shape_target, mesh minimum + barrier_window): the worst hexes first.
   double barrier_window = 0.2;
   /// Repair after untangling (see `repair_inverted`): at most this many sweeps of local
-  /// max-min moves around the hexes still inverted; 0 switches the repair off.
-  int max_repair_sweeps = 100;
+  /// max-min moves around the hexes still inverted; 0 switches the repair off. 1000 (was
+  /// 100): the repair of the start positions of `real/medial-hexmeshing/fertility` and
+  /// `real/pmp/fandisk_quads` was still gaining at 100 sweeps and settles before 1000
+  /// (docs/geometry.md "Repair").
+  int max_repair_sweeps = 1000;
   /// Repair: the nodes moved are the free nodes within this many hex rings of an inverted
   /// hex (0: the inverted hexes' own nodes).
   int repair_rings = 2;
