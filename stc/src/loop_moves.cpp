@@ -894,6 +894,18 @@ bool apply_tunnel(State& s, const Strip& strip, bool trace) {
   return true;
 }
 
+/// The placement of candidate `c` of pattern `p`: its front faces, sorted, and the move (one
+/// placement may be reached from several seeds and rotations).
+std::array<Slot, 7> placement_key(const Pattern& p, const Candidate& c) {
+  std::array<Slot, 7> key{};
+  key.fill(kNone);
+  for (std::size_t i = 0; i < p.chosen.size(); ++i)
+    key[i] = c.slot_of[static_cast<std::size_t>(p.chosen[i])];
+  std::sort(key.begin(), key.begin() + 6);  // the unused places (kNone) first
+  key[6] = static_cast<Slot>(p.move);
+  return key;
+}
+
 class Search {
  public:
   Search(const LoopMoveOptions& options, std::size_t input_quads, Goal goal)
@@ -943,13 +955,7 @@ class Search {
           for (int rot = 0; rot < 4; ++rot) {
             Candidate c;
             if (!try_candidate(s, p, seed, f, rot, 3, c)) continue;
-            std::array<Slot, 7> key{};
-            key.fill(kNone);
-            for (std::size_t i = 0; i < p.chosen.size(); ++i)
-              key[i] = c.slot_of[static_cast<std::size_t>(p.chosen[i])];
-            std::sort(key.begin(), key.begin() + 6);  // the unused places (kNone) first
-            key[6] = static_cast<Slot>(p.move);
-            if (!seen.insert(key).second) continue;
+            if (!seen.insert(placement_key(p, c)).second) continue;
             if (s.live + 6 - 2 * p.chosen.size() > max_faces_) continue;
             // The surgery look-ahead keeps its own record: the beam may have seen (and
             // dropped, by its order) the very fronts it needs.
@@ -957,22 +963,8 @@ class Search {
                                 : mode == Mode::Slide ? seen_slide_fronts_
                                                       : seen_fronts_;
             if (!seen_fronts.insert(signature_after(s, c)).second) continue;
-            State next = s;
-            const std::size_t first_new = next.faces.size();
-            apply(next, c);
-            if (mode == Mode::Slide) {
-              evaluate(next, goal_, &options_);
-            } else {
-              std::vector<Slot> removed;
-              for (const int t : p.chosen)
-                removed.push_back(c.slot_of[static_cast<std::size_t>(t)]);
-              retrace(next, removed, first_new, goal_);
-              if (options_.check_scores) check_retrace(next, goal_);
-            }
-            next.moves.back().self_crossing_quads = next.self_quads;
+            State next = moved(s, p, c, mode == Mode::Slide);
             ++tried;
-            count_evaluation();
-            work_ += next.faces.size();
             next.rank = mode == Mode::Surgery ? surgery_rank(next.score)
                         : mode == Mode::Slide ? slide_rank(next)
                                               : score_rank(next.score);
@@ -1067,29 +1059,14 @@ class Search {
               if (spent >= max_evaluations || exhausted()) return false;
               Candidate c;
               if (!try_candidate(x, p, seed, static_cast<Slot>(f), rot, 3, c)) continue;
-              std::array<Slot, 7> k{};
-              k.fill(kNone);
-              for (std::size_t i = 0; i < p.chosen.size(); ++i)
-                k[i] = c.slot_of[static_cast<std::size_t>(p.chosen[i])];
-              std::sort(k.begin(), k.begin() + 6);
-              k[6] = static_cast<Slot>(p.move);
-              if (!seen.insert(k).second) continue;
+              if (!seen.insert(placement_key(p, c)).second) continue;
               if (x.live + 6 - 2 * p.chosen.size() > max_faces_) continue;
               const std::uint64_t sig = signature_after(x, c);
               const auto it = table.find(sig);
               if (it != table.end() && it->second >= left - 1) continue;
               table[sig] = left - 1;
-              State next = x;
-              const std::size_t first_new = next.faces.size();
-              apply(next, c);
-              std::vector<Slot> removed;
-              for (const int t : p.chosen) removed.push_back(c.slot_of[static_cast<std::size_t>(t)]);
-              retrace(next, removed, first_new, goal_);
-              if (options_.check_scores) check_retrace(next, goal_);
-              next.moves.back().self_crossing_quads = next.self_quads;
+              State next = moved(x, p, c, false);
               ++spent;
-              count_evaluation();
-              work_ += next.faces.size();
               if (key(next) < target) {
                 out = std::move(next);
                 return true;
@@ -1119,6 +1096,27 @@ class Search {
   }
 
  private:
+  /// `s` with candidate `c` of pattern `p` applied and scored (with `full_trace`, every loop
+  /// traced again and the curl gap evaluated, as the curl slide ranks; else the loops the move
+  /// changed re-traced), counted as one evaluation.
+  State moved(const State& s, const Pattern& p, const Candidate& c, bool full_trace) {
+    State next = s;
+    const std::size_t first_new = next.faces.size();
+    apply(next, c);
+    if (full_trace) {
+      evaluate(next, goal_, &options_);
+    } else {
+      std::vector<Slot> removed;
+      for (const int t : p.chosen) removed.push_back(c.slot_of[static_cast<std::size_t>(t)]);
+      retrace(next, removed, first_new, goal_);
+      if (options_.check_scores) check_retrace(next, goal_);
+    }
+    next.moves.back().self_crossing_quads = next.self_quads;
+    count_evaluation();
+    work_ += next.faces.size();
+    return next;
+  }
+
   void count_evaluation() {
     ++evaluations_;
     if (tick_ && options_.progress_every > 0 && evaluations_ % options_.progress_every == 0)
@@ -1336,7 +1334,8 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
     if (!improved && current.live <= options.tiny_front && options.tiny_depth > 0) {
       State found;
       // The move bound holds through it as through the beam (`depth_bound`).
-      const std::size_t depth = std::min(options.tiny_depth, options.max_moves - current.moves.size());
+      const std::size_t depth =
+          std::min(options.tiny_depth, options.max_moves - current.moves.size());
       if (search.deepen(current, depth, options.tiny_evaluations, found)) {
         current = std::move(found);
         improved = true;
