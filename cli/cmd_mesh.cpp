@@ -66,6 +66,7 @@ struct MeshArgs {
   std::size_t loop_moves_beam_width = primal::SelfCrossingOptions{}.search.beam_width;
   std::size_t loop_moves_evaluations = primal::SelfCrossingOptions{}.search.max_evaluations;
   std::size_t loop_moves_work = primal::SelfCrossingOptions{}.search.max_work;
+  std::size_t loop_moves_tiny_depth = primal::SelfCrossingOptions{}.search.tiny_depth;
   bool depth_filter_always = false;
 };
 
@@ -260,6 +261,7 @@ int run_mesh(const MeshArgs& a) {
   options.self_crossing.search.beam_width = a.loop_moves_beam_width;
   options.self_crossing.search.max_evaluations = a.loop_moves_evaluations;
   options.self_crossing.search.max_work = a.loop_moves_work;
+  options.self_crossing.search.tiny_depth = a.loop_moves_tiny_depth;
   const bool show_progress = a.progress || (!a.quiet && isatty(STDERR_FILENO) != 0);
   if (show_progress) {
     options.on_stage = [](const std::string& s) { std::cerr << "stcweave: " << s << "...\n"; };
@@ -621,6 +623,10 @@ Action add_mesh_command(CLI::App& app) {
   sub->add_option("--loop-moves-work", args->loop_moves_work,
                   "loop moves: work bound, the sum over evaluated candidates of the front's "
                   "faces (about 5 s on a 10,000-quad surface at the default)")
+      ->capture_default_str();
+  sub->add_option("--loop-moves-tiny-depth", args->loop_moves_tiny_depth,
+                  "loop moves: on a front of at most 24 faces where every look-ahead stalls, "
+                  "search every sequence of up to this many moves (0: off)")
       ->capture_default_str();
   sub->add_flag("--depth-filter-always", args->depth_filter_always,
                 "extended: weave a genus-0 shell with the depth filter from the start (by default "

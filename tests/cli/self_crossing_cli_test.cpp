@@ -85,5 +85,27 @@ TEST(SelfCrossingCli, ProgressShowsTheFrontMoves) {
   std::filesystem::remove(in);
 }
 
+// Seed 120 of the generated catalogue: meshed through the deepening of its tiny front, and
+// given up on (exit 3, the front written) when `--loop-moves-tiny-depth 0` turns it off.
+TEST(SelfCrossingCli, TinyDepthZeroTurnsTheDeepeningOff) {
+  const auto mesh = test::random_quadrangulation(120, 8 + 120 % 14, 40);
+  ASSERT_TRUE(mesh.has_value());
+  const auto in = temp("seed120.obj");
+  primal::write_surface(*mesh, in);
+  const std::string base = "mesh " + in.string() + " --no-untangle -q -o ";
+  const auto out = temp("seed120.vtk");
+  const test::CliRun on = test::run_cli(base + out.string());
+  EXPECT_TRUE(on.code == 0 || on.code == 4) << on.out;
+  EXPECT_TRUE(std::filesystem::exists(out));
+  const auto front = temp("seed120_off.front.obj");
+  const test::CliRun off =
+      test::run_cli(base + temp("seed120_off.vtk").string() +
+                    " --loop-moves-tiny-depth 0 --front-on-failure " + front.string());
+  EXPECT_EQ(off.code, 3) << off.out;
+  EXPECT_NE(off.out.find("gave up"), std::string::npos) << off.out;
+  EXPECT_TRUE(std::filesystem::exists(front));
+  for (const auto& p : {in, out, front}) std::filesystem::remove(p);
+}
+
 }  // namespace
 }  // namespace stcweave
