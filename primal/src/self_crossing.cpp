@@ -118,6 +118,7 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
   report.used = true;
   // The ways below read these; the reliable fallback changes the rules and runs them again.
   weave::WeaveOptions weave_options = caller_weave_options;
+  if (options.undo_seam_blocking_shrinks) weave_options.undo_seam_blocking_shrinks = true;
   auto t = std::chrono::steady_clock::now();
   report.moves = stc::untangle_loops(surface.surface, options.search);
   const stc::LoopMoveResult moves = report.moves;  // a copy: a fill replaces report.moves
@@ -424,6 +425,7 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
     // Last, when every way failed: the front a stalled fill left, meshed by this stage as a
     // surface of its own (its nodes fixed) and joined to the fill's hexes.
     weave_options = caller_weave_options;
+    if (options.undo_seam_blocking_shrinks) weave_options.undo_seam_blocking_shrinks = true;
     SelfCrossingReport fresh = base;
     keep_totals(fresh);
     report = std::move(fresh);

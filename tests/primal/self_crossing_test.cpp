@@ -254,11 +254,17 @@ TEST(SelfCrossing, PipelineRescuesALoopCleanSphereWhoseWeaveBlocks) {
   MeshOptions budget = options;
   budget.weave.max_rules = 100000;
   EXPECT_THROW((void)mesh_file(file_of(mesh, "blocked"), budget), WeaveError);
-  // Every way of the rescue blocking too (no fill, no recovery pillows: the one way left is
-  // the weave that blocked): the error gives the first block, then the rescue's failure.
+  // No fill, no recovery pillows: the one way left is the weave that blocked. With the
+  // stage's undoing of shrinks that leave a seam blocked (on by default) that weave completes
+  // (39 hexes); without it, it blocks again, and the error gives the first block, then the
+  // rescue's failure.
   MeshOptions none = options;
   none.self_crossing.fill_up_to = 0;
   none.self_crossing.recovery_pillows = 0;
+  const MeshResult undone = mesh_file(file_of(mesh, "blocked"), none);
+  EXPECT_TRUE(undone.validation.valid) << undone.validation.summary();
+  EXPECT_FALSE(undone.self_crossing.filled);
+  none.self_crossing.undo_seam_blocking_shrinks = false;
   try {
     (void)mesh_file(file_of(mesh, "blocked"), none);
     ADD_FAILURE() << "the rescue completed without any of its ways";
@@ -269,6 +275,26 @@ TEST(SelfCrossing, PipelineRescuesALoopCleanSphereWhoseWeaveBlocks) {
     EXPECT_NE(what.find("every other way to weave the surface blocked too"), std::string::npos)
         << what;
   }
+}
+
+// weave::WeaveOptions::undo_seam_blocking_shrinks on a loop-clean 18-quad sphere whose
+// reliable weave blocks (its block recovery included): undoing the shrinks that leave a seam
+// refused lets the same weave complete, a certified complex with the sphere as boundary; off
+// (the default of weave::weave) it still blocks, so loop-clean surfaces weave as before.
+TEST(SelfCrossing, UndoingShrinksThatLeaveASeamBlockedCompletesABlockedWeave) {
+  const std::vector<stc::QuadSurface>& clean = loop_clean_eighteen();
+  ASSERT_EQ(clean.size(), 95U);
+  const SurfaceMesh mesh = on_sphere(clean[67]);
+  weave::WeaveOptions plain;
+  plain.rules = weave::RuleSet::Reliable;
+  ASSERT_FALSE(plain.undo_seam_blocking_shrinks);
+  EXPECT_THROW((void)weave::weave(mesh.surface, plain), WeaveError);
+  weave::WeaveOptions undo = plain;
+  undo.undo_seam_blocking_shrinks = true;
+  const weave::WeaveResult r = weave::weave(mesh.surface, undo);
+  const stc::ValidationReport v = stc::validate_hex_complex(r.complex, &mesh.surface);
+  EXPECT_TRUE(v.valid) << v.summary();
+  EXPECT_GT(r.stats.rolled_back_shrinks, 0U);
 }
 
 // An uncut genus-0 shell is woven under `extended` without the depth filter first, and with

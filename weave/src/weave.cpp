@@ -106,8 +106,14 @@ bool shrink_a_candidate(WeaveState& state, WeaveContext& ctx, const FrontLoops& 
       const std::size_t before = ctx.rules_applied;
       std::optional<WeaveState::Checkpoint> saved;
       if (backtrack && !last_resort) saved = state.checkpoint();
-      const auto failure = shrink(state, ctx, loops.strips[static_cast<std::size_t>(c.loop)],
-                                  static_cast<stc::LoopSide>(c.side));
+      const std::size_t blocked_before = state.blocked_seams.size();
+      auto failure = shrink(state, ctx, loops.strips[static_cast<std::size_t>(c.loop)],
+                            static_cast<stc::LoopSide>(c.side));
+      if (!failure && saved && ctx.options.undo_seam_blocking_shrinks &&
+          state.blocked_seams.size() > blocked_before) {
+        failure = "it left " + std::to_string(state.blocked_seams.size() - blocked_before) +
+                  " seam(s) blocked";
+      }
       if (!failure) {
         if (saved) state.release(std::move(*saved));
         ++state.stats.shrinks;

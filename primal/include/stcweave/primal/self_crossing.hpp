@@ -28,6 +28,11 @@ struct SelfCrossingOptions {
   /// A front of at most this many faces whose loops stay crossed, or whose weave blocks, is
   /// filled by the moves alone (`stc::fill_front`). 0: never.
   std::size_t fill_up_to = 200;
+  /// The weaves of this stage undo a shrink that leaves a seam blocked
+  /// (`weave::WeaveOptions::undo_seam_blocking_shrinks`). Measured on `cylinder2_c3`,
+  /// `fandisk_quads` and medial `fertility`: fewer hexes and far fewer inverted ones
+  /// (docs/self-intersecting-loops.md "Seams left blocked").
+  bool undo_seam_blocking_shrinks = true;
   /// When every way fails (the reliable fallback included) and that fill stalled on an even
   /// front of at most `fill_residual_up_to` faces (fewer than it started from), the front it
   /// left is meshed by this stage as a surface of its own (its nodes fixed) and joined to the

@@ -171,6 +171,13 @@ struct WeaveOptions {
   /// before each shrink); when all fail, the first candidate's partial shrink is kept. Off:
   /// a failed shrink's partial work is always kept.
   bool backtrack = true;
+  /// With `backtrack`: a shrink that completes but leaves a valence-2 node whose seam is
+  /// refused (more blocked seams than before it) is undone like a failed one and the next
+  /// candidate tried. Such a seam stays refused (the merge would make two hexes share two
+  /// faces), and covering either of its two faces leaves a pinched face pair in the complex
+  /// (docs/geometry.md "Pinched faces"). Off by default (loop-clean surfaces weave as
+  /// before); the front-move stage turns it on (`primal::SelfCrossingOptions`).
+  bool undo_seam_blocking_shrinks = false;
   /// When set, every trace event is also handed to it as it happens (independently of
   /// `trace`), so that the trace of a weave that throws is not lost.
   std::function<void(const TraceEvent&)> on_trace;
