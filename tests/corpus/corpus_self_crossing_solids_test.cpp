@@ -47,11 +47,10 @@ TEST(CorpusSelfCrossingSolids, RockerArmIsCutWovenAndGlued) {
 // gives up (8 hexes attached, 6 of 6 self-crossing quads left); with the shared budget of 4e7
 // face evaluations that used it all up (exit code 3). Since the search updates its scores from
 // the loops a move changed, the budget is 1e9 for about the same wall time, and the fourth
-// cut's ball, at its 29th disc choice, is untangled by 29 attached hexes and woven. Asserted:
-// it is meshed, a certified complex with the input as boundary, with fewer than twice the
-// reference's hexes (measured: 5,040). The untangling is off here (70 hexes stay inverted with
-// it: docs/self-intersecting-loops.md).
-TEST(CorpusSelfCrossingSolids, MedialFertilityIsMeshedWithinTheSharedBudget) {
+// cut's ball is untangled by attached hexes and woven. Asserted: it is meshed, a certified
+// complex with the input as boundary, within 10 % of the reference's hexes, and no hex
+// inverted after untangling.
+TEST(CorpusSelfCrossingSolids, MedialFertilityIsMeshedWithNoInvertedHex) {
   const std::string name = "real/medial-hexmeshing/fertility.boundary.obj";
   const auto path = test::shared_data() / name;
   if (!std::filesystem::exists(path)) {
@@ -59,14 +58,17 @@ TEST(CorpusSelfCrossingSolids, MedialFertilityIsMeshedWithinTheSharedBudget) {
     GTEST_SKIP() << "shared data not found at " << STCWEAVE_SHARED_DATA;
   }
   const auto file = primal::read_mesh(path);
-  primal::MeshOptions options;
-  options.untangle = false;
-  const primal::MeshResult r = primal::mesh_file(file, options);
+  // Default options, untangling included: since the weaves of the front-move stage undo the
+  // shrinks that leave a seam blocked, 4,410 hexes and none inverted (5,040 and 64 before;
+  // docs/self-intersecting-loops.md "Seams left blocked").
+  const primal::MeshResult r = primal::mesh_file(file, primal::MeshOptions{});
   EXPECT_TRUE(r.validation.valid) << r.validation.summary();
   EXPECT_TRUE(r.validation.boundary_compared);
   EXPECT_GT(r.mesh.complex.hexes.size(), 0u);
-  EXPECT_LT(r.mesh.complex.hexes.size(), 2u * 4384u);
-  std::cout << name << ": " << r.mesh.complex.hexes.size() << " hexes\n";
+  EXPECT_LT(r.mesh.complex.hexes.size(), 4384u + 4384u / 10u);  // the reference's, + 10 %
+  EXPECT_EQ(r.quality.inverted, 0u);
+  std::cout << name << ": " << r.mesh.complex.hexes.size() << " hexes, " << r.quality.inverted
+            << " inverted, min scaled Jacobian " << r.quality.min_scaled_jacobian << "\n";
 }
 
 // Genus 4, two pairs of handles whose shortest cycles share nodes (n0, n24: the skeleton's
