@@ -625,8 +625,10 @@ Action add_mesh_command(CLI::App& app) {
                   "faces (about 5 s on a 10,000-quad surface at the default)")
       ->capture_default_str();
   sub->add_option("--loop-moves-tiny-depth", args->loop_moves_tiny_depth,
-                  "loop moves: on a front of at most 24 faces where every look-ahead stalls, "
-                  "search every sequence of up to this many moves (0: off)")
+                  "loop moves: on a front of at most " +
+                      std::to_string(primal::SelfCrossingOptions{}.search.tiny_front) +
+                      " faces where every look-ahead stalls, search every sequence of up to "
+                      "this many moves (0: off)")
       ->capture_default_str();
   sub->add_flag("--depth-filter-always", args->depth_filter_always,
                 "extended: weave a genus-0 shell with the depth filter from the start (by default "

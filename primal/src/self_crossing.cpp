@@ -117,8 +117,13 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
   report = SelfCrossingReport{};
   report.used = true;
   // The ways below read these; the reliable fallback changes the rules and runs them again.
-  weave::WeaveOptions weave_options = caller_weave_options;
-  if (options.undo_seam_blocking_shrinks) weave_options.undo_seam_blocking_shrinks = true;
+  // The caller's weave options as this stage runs them.
+  const auto stage_weave_options = [&] {
+    weave::WeaveOptions o = caller_weave_options;
+    if (options.undo_seam_blocking_shrinks) o.undo_seam_blocking_shrinks = true;
+    return o;
+  };
+  weave::WeaveOptions weave_options = stage_weave_options();
   auto t = std::chrono::steady_clock::now();
   report.moves = stc::untangle_loops(surface.surface, options.search);
   const stc::LoopMoveResult moves = report.moves;  // a copy: a fill replaces report.moves
@@ -424,8 +429,7 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
   if (!best && stalled && options.fill_residual_depth > 0) {
     // Last, when every way failed: the front a stalled fill left, meshed by this stage as a
     // surface of its own (its nodes fixed) and joined to the fill's hexes.
-    weave_options = caller_weave_options;
-    if (options.undo_seam_blocking_shrinks) weave_options.undo_seam_blocking_shrinks = true;
+    weave_options = stage_weave_options();
     SelfCrossingReport fresh = base;
     keep_totals(fresh);
     report = std::move(fresh);

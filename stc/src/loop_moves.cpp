@@ -894,6 +894,12 @@ bool apply_tunnel(State& s, const Strip& strip, bool trace) {
   return true;
 }
 
+/// The part of the score a look-ahead must lower: (odd loops, self-crossing quads) when
+/// untangling, (front faces, self-crossing quads) when filling.
+std::tuple<std::size_t, std::size_t> goal_key(const State& s) {
+  return {std::get<0>(s.score), std::get<1>(s.score)};
+}
+
 /// The placement of candidate `c` of pattern `p`: its front faces, sorted, and the move (one
 /// placement may be reached from several seeds and rotations).
 std::array<Slot, 7> placement_key(const Pattern& p, const Candidate& c) {
@@ -1006,13 +1012,10 @@ class Search {
   /// self-crossing quads) below `s`'s; the lowest score wins. True and `out` set when found:
   /// `s` with the tunnels replayed, every hex's self-crossings traced.
   bool tunnel(const State& s, State& out) {
-    const auto key = [](const State& x) {
-      return std::make_pair(std::get<0>(x.score), std::get<1>(x.score));
-    };
     std::vector<Strip> chosen;
     Score best_score{};
     const auto consider = [&](const State& t, const std::vector<Strip>& path) {
-      if (key(t) >= key(s) || (!chosen.empty() && t.score >= best_score)) return;
+      if (goal_key(t) >= goal_key(s) || (!chosen.empty() && t.score >= best_score)) return;
       chosen = path;
       best_score = t.score;
     };
@@ -1040,13 +1043,9 @@ class Search {
   /// quads) or (front faces, self-crossing quads) is below `s`'s. True and `out` set when
   /// found.
   bool deepen(const State& s, std::size_t max_depth, std::size_t max_evaluations, State& out) {
-    const auto key = [](const State& x) {
-      return std::make_pair(std::get<0>(x.score), std::get<1>(x.score));
-    };
-    const auto target = key(s);
+    const auto target = goal_key(s);
     std::unordered_map<std::uint64_t, std::size_t> table;
     std::size_t spent = 0;
-    std::vector<Slot> all;
     const std::function<bool(const State&, std::size_t)> dfs = [&](const State& x,
                                                                    std::size_t left) -> bool {
       if (left == 0) return false;
@@ -1067,7 +1066,7 @@ class Search {
               table[sig] = left - 1;
               State next = moved(x, p, c, false);
               ++spent;
-              if (key(next) < target) {
+              if (goal_key(next) < target) {
                 out = std::move(next);
                 return true;
               }
@@ -1231,10 +1230,6 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
     reported_tens = current.moves.size() / 10;
     report();
   };
-  // The part of the score the beam must lower (the goal's own figures).
-  const auto key = [](const State& s) {
-    return std::make_tuple(std::get<0>(s.score), std::get<1>(s.score));
-  };
   std::string stop;
   bool sliding = false;  // a curl slide was taken and (odd loops, self-crossings) not lowered
   std::tuple<std::size_t, std::size_t> sliding_from{};
@@ -1257,7 +1252,7 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
         options.max_moves - current.moves.size());
     // After a curl slide, and until (odd loops, self-crossing quads) fall, the greedy step
     // ranks by `slide_rank` so that it does not undo the slide to save front faces.
-    if (sliding && key(current) < sliding_from) sliding = false;
+    if (sliding && goal_key(current) < sliding_from) sliding = false;
     if (sliding) evaluate(current, goal, &options);
     std::vector<State> level =
         sliding ? search.successors(current, width, Search::Mode::Slide, options.max_candidates)
@@ -1272,7 +1267,7 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
     bool improved = false;
     for (std::size_t depth = 2; depth <= depth_bound && !level.empty() && !improved; ++depth) {
       level = search.next_level(level, width, Search::Mode::Beam, options.max_candidates);
-      if (!level.empty() && key(level.front()) < key(current)) {
+      if (!level.empty() && goal_key(level.front()) < goal_key(current)) {
         current = std::move(level.front());
         improved = true;
       }
@@ -1285,7 +1280,7 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
       std::vector<State> surgeries = search.successors(
           current, options.surgery_width, Search::Mode::Surgery, options.surgery_candidates);
       for (std::size_t depth = 1; depth <= options.surgery_depth && !surgeries.empty(); ++depth) {
-        if (key(surgeries.front()) < key(current)) {
+        if (goal_key(surgeries.front()) < goal_key(current)) {
           current = std::move(surgeries.front());
           improved = true;
           break;
@@ -1321,7 +1316,7 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
           slide = search.next_level(slide, options.curl_slide_width, Search::Mode::Slide,
                                     options.max_candidates);
           if (!slide.empty() && slide_key(slide.front()) < slide_key(current)) {
-            if (!sliding) sliding_from = key(current);
+            if (!sliding) sliding_from = goal_key(current);
             sliding = true;
             current = std::move(slide.front());
             improved = true;

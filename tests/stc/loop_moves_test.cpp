@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <optional>
 
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/stc/loops.hpp"
@@ -13,6 +14,17 @@
 
 namespace stcweave::stc {
 namespace {
+
+/// The generated sphere of `seed` (`base + seed % spread` quads, `rotations` edge rotations;
+/// tests/support/quadrangulations.hpp) when it is even and some loop crosses itself.
+std::optional<QuadSurface> even_self_crossing(std::uint32_t seed, int base, int spread,
+                                              int rotations) {
+  const auto mesh =
+      test::random_quadrangulation(seed, base + static_cast<int>(seed % spread), rotations);
+  if (!mesh || mesh->surface.quads.size() % 2 == 1) return std::nullopt;
+  if (find_loops(mesh->surface, {.sides = false}).num_self_intersecting() == 0) return std::nullopt;
+  return mesh->surface;
+}
 
 TEST(LoopMoves, BoxesAreFilledByMovesAloneWithTheirStructuredHexes) {
   for (const auto& [a, b, c] :
@@ -55,10 +67,9 @@ TEST(LoopMoves, MovesKeepTheFrontAndTheAttachedHexesValid) {
   LoopMoveOptions options;
   options.max_evaluations = 5000;
   for (std::uint32_t seed = 0; seed < 200; ++seed) {
-    const auto mesh = test::random_quadrangulation(seed, 8 + static_cast<int>(seed % 14), 40);
-    if (!mesh || mesh->surface.quads.size() % 2 == 1) continue;
-    const QuadSurface& s = mesh->surface;
-    if (find_loops(s, {.sides = false}).num_self_intersecting() == 0) continue;
+    const auto surface = even_self_crossing(seed, 8, 14, 40);
+    if (!surface) continue;
+    const QuadSurface& s = *surface;
     const LoopMoveResult r = untangle_loops(s, options);
     ++checked;
     EXPECT_TRUE(test::is_strong_quadrangulation(r.front)) << "seed " << seed;
@@ -113,10 +124,9 @@ TEST(LoopMoves, ScoresUpdatedFromTheChangedLoopsMatchAFullTrace) {
   std::size_t checked = 0;
   std::size_t evaluations = 0;
   for (std::uint32_t seed = 0; seed < 200 && checked < 30; ++seed) {
-    const auto mesh = test::random_quadrangulation(seed, 8 + static_cast<int>(seed % 24), 40);
-    if (!mesh || mesh->surface.quads.size() % 2 == 1) continue;
-    const QuadSurface& s = mesh->surface;
-    if (find_loops(s, {.sides = false}).num_self_intersecting() == 0) continue;
+    const auto surface = even_self_crossing(seed, 8, 24, 40);
+    if (!surface) continue;
+    const QuadSurface& s = *surface;
     LoopMoveOptions options;
     options.max_evaluations = 3000;
     const LoopMoveResult plain = untangle_loops(s, options);
@@ -170,16 +180,15 @@ TEST(LoopMoves, ProgressIsReportedAndChangesNothing) {
   std::size_t searched = 0;
   std::size_t reports = 0;
   for (std::uint32_t seed = 0; seed < 200 && searched < 10; ++seed) {
-    const auto mesh = test::random_quadrangulation(seed, 16 + static_cast<int>(seed % 10), 60);
-    if (!mesh || mesh->surface.quads.size() % 2 == 1) continue;
-    if (find_loops(mesh->surface, {.sides = false}).num_self_intersecting() == 0) continue;
+    const auto surface = even_self_crossing(seed, 16, 10, 60);
+    if (!surface) continue;
     LoopMoveOptions options;
     options.max_evaluations = 3000;
-    const LoopMoveResult plain = untangle_loops(mesh->surface, options);
+    const LoopMoveResult plain = untangle_loops(*surface, options);
     std::vector<LoopMoveProgress> seen;
     options.progress = [&](const LoopMoveProgress& p) { seen.push_back(p); };
     options.progress_every = 200;
-    const LoopMoveResult reported = untangle_loops(mesh->surface, options);
+    const LoopMoveResult reported = untangle_loops(*surface, options);
     ++searched;
     EXPECT_EQ(reported.hexes.hexes, plain.hexes.hexes) << "seed " << seed;
     EXPECT_EQ(reported.evaluations, plain.evaluations) << "seed " << seed;
