@@ -1026,6 +1026,40 @@ ShapeReport local_shape(HexMesh& mesh, const std::vector<bool>& fixed,
 }
 
 /// Adds the sweeps and moves of `more` to `into` and takes its figures "after".
+/// When no hex is below `shape_target` at the start, the report of a shape phase with nothing
+/// to raise ("target reached", nothing ran), found with one pass over the hexes; otherwise an
+/// empty `stop`. Both orders of `improve_shape` would build their incidence tables and
+/// evaluate every hex four times to reach the same verdict, which on a structured box of
+/// 205,379 hexes cost 0.2 s of a 4 s run.
+ShapeReport nothing_below_target(const HexMesh& mesh, const std::vector<bool>& fixed,
+                                 const PositionOptions& options) {
+  ShapeReport r;
+  const std::vector<stc::Hex>& hexes = mesh.complex.hexes;
+  if (options.barrier_rounds <= 0 || options.max_shape_sweeps <= 0 || hexes.empty() ||
+      fixed.size() != static_cast<std::size_t>(mesh.points.rows()))
+    return r;
+  // Without a free node the phases say so ("no free node").
+  const bool any_free = std::any_of(hexes.begin(), hexes.end(), [&](const stc::Hex& h) {
+    return std::any_of(h.begin(), h.end(), [&](NodeId v) { return !fixed[v.index()]; });
+  });
+  if (!any_free) return r;
+  double min = std::numeric_limits<double>::infinity();
+  double sum = 0.0;
+  for (const stc::Hex& h : hexes) {
+    const double x = hex_scaled_jacobian(mesh.points, h);
+    if (!(x >= options.shape_target)) return r;  // NaN included: the phases decide
+    min = std::min(min, x);
+    sum += x;
+  }
+  r.min_scaled_jacobian_before = r.min_scaled_jacobian_after = min;
+  r.mean_scaled_jacobian_before = r.mean_scaled_jacobian_after =
+      sum / static_cast<double>(hexes.size());
+  r.barrier.min_scaled_jacobian_before = r.barrier.min_scaled_jacobian_after = min;
+  r.barrier.stop = "target reached";
+  r.stop = "target reached";
+  return r;
+}
+
 void append_local(ShapeReport& into, const ShapeReport& more) {
   into.ran = into.ran || more.ran;
   into.sweeps += more.sweeps;
@@ -1397,7 +1431,8 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
   if (!report.impossible.empty())
     report.stop += "; " + std::to_string(report.impossible.size()) + " impossible corners left out";
 
-  QualitySummary after = summarize_quality(mesh, 0);
+  // A good start is kept untouched: its figures are those measured before.
+  QualitySummary after = report.good_start ? before : summarize_quality(mesh, 0);
   if (after.inverted > before.inverted && report.free_nodes > 0) {
     // The energy counts corners; a user counts hexes. Never hand back more inverted hexes
     // than we were given: keep the start instead.
@@ -1463,14 +1498,22 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
   }
   report.min_scaled_jacobian_untangled = after.min_scaled_jacobian;
   report.mean_scaled_jacobian_untangled = after.mean_scaled_jacobian;
-  report.shape = improve_shape(mesh, fixed, options);
+  // (Options and node ids were checked above; `improve_shape` checks them for its own callers.)
+  report.shape = nothing_below_target(mesh, fixed, options);
+  if (report.shape.stop.empty()) report.shape = improve_shape(mesh, fixed, options);
   if (report.shape.moves > 0 || report.shape.barrier.ran) after = summarize_quality(mesh, 0);
   report.inverted_after = after.inverted;
   report.min_scaled_jacobian_after = after.min_scaled_jacobian;
   report.mean_scaled_jacobian_after = after.mean_scaled_jacobian;
+  // Nothing moved since the corners were counted (a good start the shape phase left alone):
+  // the count stands.
+  const bool unmoved = report.good_start && report.shape.moves == 0 && !report.shape.barrier.ran;
+  if (unmoved) report.corners_inverted_after = report.corners_inverted_before;
   for (std::size_t hx = 0; hx < mesh.complex.hexes.size(); ++hx) {
-    for (double d : hex_corner_jacobians(mesh.points, mesh.complex.hexes[hx]))
-      report.corners_inverted_after += d <= 0.0;
+    if (!unmoved) {
+      for (double d : hex_corner_jacobians(mesh.points, mesh.complex.hexes[hx]))
+        report.corners_inverted_after += d <= 0.0;
+    }
     if (after.per_hex[hx] <= 0.0) report.inverted.emplace_back(hx);
   }
   report.untangled = report.inverted_after == 0 && report.corners_inverted_after == 0;

@@ -142,7 +142,8 @@ TEST(GoodStart, ADistortedStartIsStillOptimised) {
   EXPECT_GT(r.outer_iterations, 0u);
   EXPECT_GE(r.min_scaled_jacobian_after, r.min_scaled_jacobian_untangled)
       << "the shape phase never lowers the worst hex";
-  EXPECT_TRUE(r.shape.ran);
+  // The shape phase ran, or found every hex at its target already (nothing to run).
+  EXPECT_TRUE(r.shape.ran || r.shape.stop == "target reached") << r.shape.stop;
   EXPECT_EQ(r.inverted_after, 0u);
 
   // Above 1, never early: the same perfect box goes through the rounds.
@@ -153,6 +154,51 @@ TEST(GoodStart, ADistortedStartIsStillOptimised) {
   const PositionReport n = position_nodes(box, never);
   EXPECT_FALSE(n.good_start);
   EXPECT_GT(n.outer_iterations, 0u);
+}
+
+// A good start with no hex below the shape target is left exactly as it was: the shape phase
+// finds nothing to raise ("target reached", nothing ran) and the figures are the start's.
+TEST(GoodStart, AStartAtTheShapeTargetIsLeftAsItIs) {
+  HexMesh box = test::box_hexes(3, 3, 3, 1.0, 2.0, 0.5);
+  PositionOptions options;
+  options.num_fixed = test::boundary_first(box);
+  const Points start = box.points;
+  const PositionReport r = position_nodes(box, options);
+  EXPECT_TRUE(r.good_start) << r.stop;
+  EXPECT_FALSE(r.shape.ran);
+  EXPECT_EQ(r.shape.stop, "target reached");
+  EXPECT_EQ(r.shape.barrier.stop, "target reached");
+  EXPECT_EQ(r.shape.moves, 0u);
+  EXPECT_DOUBLE_EQ(r.shape.min_scaled_jacobian_before, 1.0);
+  EXPECT_DOUBLE_EQ(r.shape.min_scaled_jacobian_after, 1.0);
+  EXPECT_DOUBLE_EQ(r.min_scaled_jacobian_after, 1.0);
+  EXPECT_EQ(r.corners_inverted_after, 0u);
+  EXPECT_TRUE(r.untangled);
+  EXPECT_EQ(box.points, start);
+
+  // With the shape phase off it says so, whatever the quality.
+  HexMesh off_box = test::box_hexes(3, 3, 3);
+  PositionOptions off = options;
+  off.num_fixed = test::boundary_first(off_box);
+  off.max_shape_sweeps = 0;
+  EXPECT_EQ(position_nodes(off_box, off).shape.stop, "off");
+
+  // A hex below the target: the phase runs (and raises it).
+  HexMesh bent = test::box_hexes(3, 3, 3);
+  PositionOptions bent_options;
+  bent_options.num_fixed = test::boundary_first(bent);
+  bent_options.good_start = 0.0;
+  bent_options.good_start_mean = 0.0;
+  // One interior node pushed towards a corner of its cell: the hexes around it are sheared.
+  bent.points.row(static_cast<Eigen::Index>(bent_options.num_fixed)) +=
+      Eigen::RowVector3d(0.3, 0.3, 0.3);
+  const double below = summarize_quality(bent, 0).min_scaled_jacobian;
+  ASSERT_GT(below, 0.0);
+  ASSERT_LT(below, bent_options.shape_target);
+  const PositionReport b = position_nodes(bent, bent_options);
+  EXPECT_TRUE(b.good_start) << b.stop;
+  EXPECT_TRUE(b.shape.ran) << b.shape.stop;
+  EXPECT_GT(b.min_scaled_jacobian_after, below);
 }
 
 }  // namespace

@@ -217,7 +217,9 @@ BarrierReport raise_worst_corners(HexMesh& mesh, const std::vector<bool>& fixed,
 
 /// What `improve_shape` did.
 struct ShapeReport {
-  bool ran = false;  ///< false when the mesh had inverted hexes or no free node
+  /// false when the mesh had inverted hexes, no free node, or (`position_nodes`) no hex below
+  /// `shape_target` at the start
+  bool ran = false;
   std::size_t sweeps = 0;
   std::size_t moves = 0;  ///< accepted node moves
   double min_scaled_jacobian_before = 0.0;
@@ -226,7 +228,8 @@ struct ShapeReport {
   double mean_scaled_jacobian_after = 0.0;
   BarrierReport barrier;  ///< the barrier pass of the order kept
   /// Which order was kept: "barrier first" (barrier pass, local sweeps) or "local first"
-  /// (local sweeps, barrier pass, local sweeps); empty when the barrier pass is off.
+  /// (local sweeps, barrier pass, local sweeps); empty when the barrier pass is off or when
+  /// `position_nodes` found no hex below `shape_target` (nothing ran).
   std::string order;
   /// "target reached" (no hex below `shape_target`), "settled" (a sweep gained less than
   /// `shape_tolerance` in the minimum and in the shortfall below the target), "sweep limit",
