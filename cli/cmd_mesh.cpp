@@ -262,6 +262,7 @@ int run_mesh(const MeshArgs& a) {
   options.self_crossing.search.max_evaluations = a.loop_moves_evaluations;
   options.self_crossing.search.max_work = a.loop_moves_work;
   options.self_crossing.search.tiny_depth = a.loop_moves_tiny_depth;
+  options.self_crossing.undo_seam_blocking_shrinks = a.weave.undo_seam_blocking_shrinks;
   const bool show_progress = a.progress || (!a.quiet && isatty(STDERR_FILENO) != 0);
   if (show_progress) {
     options.on_stage = [](const std::string& s) { std::cerr << "stcweave: " << s << "...\n"; };
@@ -422,7 +423,8 @@ int run_mesh(const MeshArgs& a) {
                      {"parallel_merges", s.parallel_merges},
                      {"nonconvexity_seams", s.nonconvexity_seams},
                      {"recoveries", s.recoveries},
-                     {"recovery_trials", s.recovery_trials}};
+                     {"recovery_trials", s.recovery_trials},
+                     {"seam_undo_retries", s.seam_undo_retries}};
   {
     // The block recovery (docs/weave-recovery.md): where each kept pillow went.
     nlohmann::json recoveries = nlohmann::json::array();
@@ -471,6 +473,12 @@ int run_mesh(const MeshArgs& a) {
     std::cout << "\nhexes      " << r.mesh.complex.hexes.size() << " (" << report["interior_nodes"]
               << " interior nodes, " << stc.sheets.size() << " sheets, " << stc.chords.size()
               << " chords, " << blind_chords << " blind)\n";
+    if (s.seam_undo_retries > 0) {
+      std::cout << "retry      " << s.seam_undo_retries << " weave"
+                << (s.seam_undo_retries == 1 ? "" : "s")
+                << " blocked keeping the shrinks that leave a seam blocked; woven again undoing "
+                   "them\n";
+    }
     if (s.recoveries > 0) {
       std::cout << "recovery   the weave blocked; " << s.recoveries << " pillow"
                 << (s.recoveries == 1 ? "" : "s") << " of blocked front faces let it complete ("

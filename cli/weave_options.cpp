@@ -87,6 +87,13 @@ void add_weave_options(CLI::App* sub, WeaveArgs& args) {
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "off"}))
       ->group(group);
+  sub->add_flag_function(
+         "--keep-seam-blocking-shrinks",
+         [&args](std::int64_t) { args.undo_seam_blocking_shrinks = false; },
+         "never undo a loop shrink that leaves a valence-2 node whose seam is refused (by "
+         "default a weave that blocks is woven again undoing such shrinks, and the front-move "
+         "stage always undoes them; docs/weave-recovery.md \"Seams left blocked\")")
+      ->group(group);
 }
 
 void apply_weave_options(const WeaveArgs& args, weave::WeaveOptions& options) {
@@ -94,6 +101,9 @@ void apply_weave_options(const WeaveArgs& args, weave::WeaveOptions& options) {
   options.extended = args.extended;
   options.max_rules = args.max_rules;
   options.block_recovery = weave::block_recovery_from_name(args.block_recovery);
+  // The flag switches off every undoing: the retry of a weave that blocked here, and (mesh)
+  // the front-move stage's.
+  options.undo_seam_blocking_on_block = args.undo_seam_blocking_shrinks;
   weave::check_parameters(options.extended);
 }
 
@@ -101,6 +111,8 @@ nlohmann::json weave_options_json(const weave::WeaveOptions& options) {
   nlohmann::json j;
   j["rules"] = weave::to_string(options.rules);
   j["block_recovery"] = weave::to_string(options.block_recovery);
+  j["undo_seam_blocking_shrinks"] = options.undo_seam_blocking_shrinks;
+  j["undo_seam_blocking_on_block"] = options.undo_seam_blocking_on_block;
   if (options.rules == weave::RuleSet::Extended) {
     const weave::ExtendedParameters& p = options.extended;
     j["sharp"] = p.sharp;

@@ -16,10 +16,12 @@ struct WeaveArgs {
   weave::ExtendedParameters extended;
   std::size_t max_rules = 0;
   std::string block_recovery = "auto";
+  bool undo_seam_blocking_shrinks = true;
 };
 
 /// Adds --rules, the four angle thresholds, one --no-<switch> flag per filter or rule of the
-/// extended set, --max-rules and --block-recovery to `sub`, in an option group "Weaving".
+/// extended set, --max-rules, --block-recovery and --keep-seam-blocking-shrinks to `sub`, in
+/// an option group "Weaving".
 void add_weave_options(CLI::App* sub, WeaveArgs& args);
 
 /// Copies the parsed arguments into `options`. \throw InvalidInput for an unknown rule set or

@@ -497,6 +497,7 @@ void add_stats(weave::WeaveStats& sum, const weave::WeaveStats& s) {
   sum.front_pillows += s.front_pillows;
   sum.recoveries += s.recoveries;
   sum.recovery_trials += s.recovery_trials;
+  sum.seam_undo_retries += s.seam_undo_retries;
 }
 
 /// The glued complex of `hexes` (over final ids, `num_nodes` final nodes) checked by

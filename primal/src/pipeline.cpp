@@ -193,6 +193,9 @@ weave::WeaveResult weave_whole_shell(const stc::QuadSurface& surface, const Mesh
     return weave::weave(surface, options.weave, angles);
   weave::WeaveOptions first = options.weave;
   first.extended.depth_filter = false;
+  // The retry undoing the shrinks that leave a seam blocked comes last, in the weave with the
+  // filter (the order measured first: docs/extended-rules.md, docs/weave-recovery.md).
+  first.undo_seam_blocking_on_block = false;
   std::vector<weave::TraceEvent> held;
   if (options.weave.on_trace)
     first.on_trace = [&held](const weave::TraceEvent& e) { held.push_back(e); };

@@ -327,6 +327,17 @@ TEST_F(Cli, WeavingOptionsAreCheckedAndRecorded) {
                    .at("weave_options")
                    .at("depth_filter_after_block")
                    .get<bool>());
+  // The retry undoing the shrinks that leave a seam blocked: on by default (not needed here:
+  // no retry counted), off with --keep-seam-blocking-shrinks.
+  EXPECT_TRUE(j.at("weave_options").at("undo_seam_blocking_on_block").get<bool>());
+  EXPECT_FALSE(j.at("weave_options").at("undo_seam_blocking_shrinks").get<bool>());
+  EXPECT_EQ(j.at("weave").at("seam_undo_retries").get<int>(), 0);
+  const CliRun keep = run("mesh " + data("lblock.obj") + " -o " + out.string() +
+                          " -q --keep-seam-blocking-shrinks --report " + report.string());
+  ASSERT_EQ(keep.code, 0) << keep.out;
+  const auto k = nlohmann::json::parse(slurp(report));
+  EXPECT_FALSE(k.at("weave_options").at("undo_seam_blocking_on_block").get<bool>());
+  EXPECT_EQ(k.at("hexes").get<int>(), 10);
 }
 
 TEST_F(Cli, TraceNamesTheDecidingFilterAndSurvivesAFailedWeave) {

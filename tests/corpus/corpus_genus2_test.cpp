@@ -36,11 +36,13 @@ TEST(CorpusGenus2, FertilityIsCutAlongLoopFollowingDiscsIntoAValidComplex) {
   const auto file = primal::read_mesh(path);
   primal::SurfaceMesh surface = primal::surface_of(file);
   primal::orient_outward(surface);
-  // Block recovery off: then no grid disc gives a cut ball that weaves, and the second pass's
-  // loop-following discs are what this test exercises. (With the default recovery the grids'
-  // weaves complete and the first pass already succeeds.)
+  // Block recovery and the retry undoing the shrinks that leave a seam blocked off: then no
+  // grid disc gives a cut ball that weaves, and the second pass's loop-following discs are what
+  // this test exercises. (With either, the grids' weaves complete and the first pass already
+  // succeeds.)
   primal::MeshOptions options;
   options.weave.block_recovery = weave::BlockRecovery::Off;
+  options.weave.undo_seam_blocking_on_block = false;
   primal::SolidsReport report;
   weave::WeaveResult woven;
   ASSERT_NO_THROW(woven = primal::weave_solids(surface, options.weave, options.cut, &report));

@@ -213,13 +213,17 @@ TEST(SelfCrossing, PipelineRescuesALoopCleanSphereWhoseWeaveBlocks) {
   const SurfaceMesh mesh = on_sphere(clean[67]);
   SurfaceMesh oriented = mesh;
   ASSERT_EQ(orient_outward(oriented).flipped_quads, 0U);
+  // (Without the retry that undoes the shrinks leaving a seam blocked, which completes this
+  // weave: UndoingShrinksThatLeaveASeamBlockedCompletesABlockedWeave.)
   weave::WeaveOptions plain;
   plain.rules = weave::RuleSet::Reliable;
+  plain.undo_seam_blocking_on_block = false;
   ASSERT_THROW((void)weave::weave(mesh.surface, plain), WeaveError)
       << "the weave no longer blocks here: pick another blocked loop-clean surface";
 
   MeshOptions options;
   options.weave.rules = weave::RuleSet::Reliable;
+  options.weave.undo_seam_blocking_on_block = false;
   options.untangle = false;  // the rescue is the weave's; untangling these hexes takes 20 s
   const MeshResult r = mesh_file(file_of(mesh, "blocked"), options);
   EXPECT_TRUE(r.validation.valid) << r.validation.summary();
@@ -279,8 +283,10 @@ TEST(SelfCrossing, PipelineRescuesALoopCleanSphereWhoseWeaveBlocks) {
 
 // weave::WeaveOptions::undo_seam_blocking_shrinks on a loop-clean 18-quad sphere whose
 // reliable weave blocks (its block recovery included): undoing the shrinks that leave a seam
-// refused lets the same weave complete, a certified complex with the sphere as boundary; off
-// (the default of weave::weave) it still blocks, so loop-clean surfaces weave as before.
+// refused lets the same weave complete, a certified complex with the sphere as boundary. Off
+// (the default) the weave blocks, and by default (`undo_seam_blocking_on_block`) weave::weave
+// then weaves it again with the option on: the same complex, marked as that retry; a weave
+// that completes the first time is not retried.
 TEST(SelfCrossing, UndoingShrinksThatLeaveASeamBlockedCompletesABlockedWeave) {
   const std::vector<stc::QuadSurface>& clean = loop_clean_eighteen();
   ASSERT_EQ(clean.size(), 95U);
@@ -288,13 +294,46 @@ TEST(SelfCrossing, UndoingShrinksThatLeaveASeamBlockedCompletesABlockedWeave) {
   weave::WeaveOptions plain;
   plain.rules = weave::RuleSet::Reliable;
   ASSERT_FALSE(plain.undo_seam_blocking_shrinks);
-  EXPECT_THROW((void)weave::weave(mesh.surface, plain), WeaveError);
-  weave::WeaveOptions undo = plain;
+  ASSERT_TRUE(plain.undo_seam_blocking_on_block);
+  weave::WeaveOptions no_retry = plain;
+  no_retry.undo_seam_blocking_on_block = false;
+  EXPECT_THROW((void)weave::weave(mesh.surface, no_retry), WeaveError);
+  weave::WeaveOptions undo = no_retry;
   undo.undo_seam_blocking_shrinks = true;
   const weave::WeaveResult r = weave::weave(mesh.surface, undo);
   const stc::ValidationReport v = stc::validate_hex_complex(r.complex, &mesh.surface);
   EXPECT_TRUE(v.valid) << v.summary();
   EXPECT_GT(r.stats.rolled_back_shrinks, 0U);
+  EXPECT_EQ(r.stats.seam_undo_retries, 0U) << "asked for: no retry";
+
+  // The default: the block, then the retry, whose complex is returned; the trace streamed is
+  // that of the retry alone.
+  std::size_t streamed = 0;
+  plain.on_trace = [&streamed](const weave::TraceEvent&) { ++streamed; };
+  const weave::WeaveResult retried = weave::weave(mesh.surface, plain);
+  EXPECT_EQ(retried.complex.hexes, r.complex.hexes);
+  EXPECT_EQ(retried.stats.seam_undo_retries, 1U);
+  std::size_t alone = 0;
+  undo.on_trace = [&alone](const weave::TraceEvent&) { ++alone; };
+  (void)weave::weave(mesh.surface, undo);
+  EXPECT_GT(alone, 0U);
+  EXPECT_EQ(streamed, alone);
+
+  // A weave that completes the first time is the same with or without the retry.
+  const weave::WeaveResult first = weave::weave(clean[0], plain);
+  const weave::WeaveResult first_no_retry = weave::weave(clean[0], no_retry);
+  EXPECT_EQ(first.complex.hexes, first_no_retry.complex.hexes);
+  EXPECT_EQ(first.stats.seam_undo_retries, 0U);
+
+  // Through the pipeline: the retry's weave, certified, with no rescue by the front-move stage.
+  MeshOptions options;
+  options.weave.rules = weave::RuleSet::Reliable;
+  options.untangle = false;
+  const MeshResult m = mesh_file(file_of(mesh, "retried"), options);
+  EXPECT_TRUE(m.validation.valid) << m.validation.summary();
+  EXPECT_EQ(m.woven.stats.seam_undo_retries, 1U);
+  EXPECT_FALSE(m.self_crossing.used);
+  EXPECT_EQ(m.woven.complex.hexes, r.complex.hexes);
 }
 
 // An uncut genus-0 shell is woven under `extended` without the depth filter first, and with
@@ -310,6 +349,9 @@ TEST(DepthFilter, AnUncutShellIsWovenWithoutTheDepthFilterUnlessThatBlocks) {
   ASSERT_TRUE(options.depth_filter_after_block);
   weave::WeaveOptions without = options.weave;
   without.extended.depth_filter = false;
+  // As weave_whole_shell weaves it: without the retry undoing the shrinks that leave a seam
+  // blocked (that retry comes last, in the weave with the filter).
+  without.undo_seam_blocking_on_block = false;
   std::string retry;
 
   // Both weaves complete and differ: the one without the filter is kept.
@@ -352,8 +394,9 @@ TEST(DepthFilter, AnUncutShellIsWovenWithoutTheDepthFilterUnlessThatBlocks) {
 }
 
 // The two loop-clean 18-quad shapes of the sphere closure that stay blocked with the block
-// recovery (tests/weave/complete_test.cpp pins them: 67 under reliable, 91 under extended, in
-// the closure's order) are woven by the stage's ways with `plain_weave_blocked`, which skips
+// recovery when the weave is not retried undoing the shrinks that leave a seam blocked (67
+// under reliable, 91 under extended, in the closure's order; with that retry both complete,
+// tests/weave/complete_test.cpp) are woven by the stage's ways with `plain_weave_blocked`, which skips
 // re-running the weave that blocked.
 TEST(SelfCrossing, StageWeavesTheBlockedEighteenQuadSpheres) {
   const std::vector<stc::QuadSurface>& clean = loop_clean_eighteen();
@@ -363,6 +406,7 @@ TEST(SelfCrossing, StageWeavesTheBlockedEighteenQuadSpheres) {
     const stc::QuadSurface& s = clean[static_cast<std::size_t>(index)];
     weave::WeaveOptions o;
     o.rules = rules;
+    o.undo_seam_blocking_on_block = false;  // that retry completes both
     ASSERT_THROW((void)weave::weave(s, o), WeaveError) << "shape " << index << " no longer blocks";
     SurfaceMesh m;
     m.surface = s;
@@ -407,6 +451,7 @@ TEST(SelfCrossingSlow, StageWeavesTheBlockedTwentyQuadSpheres) {
     for (std::size_t i = 0; i < clean.size(); ++i) {
       weave::WeaveOptions o;
       o.rules = rules;
+      o.undo_seam_blocking_on_block = false;  // the blocks of the recovery alone
       try {
         (void)weave::weave(clean[i], o);
         continue;

@@ -27,9 +27,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "driver.hpp"
 #include "recovery.hpp"
@@ -272,8 +274,44 @@ std::optional<std::string> weave_front(WeaveState& state, WeaveContext& ctx,
 
 WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options,
                   const std::vector<std::array<double, 4>>& side_angles) {
-  return run_weave(initial_state(surface, options, side_angles), options,
-                   rule_budget(surface, options), {}, {});
+  const auto once = [&](const WeaveOptions& o) {
+    return run_weave(initial_state(surface, o, side_angles), o, rule_budget(surface, o), {}, {});
+  };
+  // (A rule budget of the caller's is kept: no second weave.)
+  if (options.undo_seam_blocking_shrinks || !options.undo_seam_blocking_on_block ||
+      !options.backtrack || options.max_rules != 0)
+    return once(options);
+  // A weave that blocks keeping the shrinks that leave a seam blocked is woven again undoing
+  // them (docs/weave-recovery.md "Seams left blocked"). The streamed trace of the first weave is
+  // held until it is known which weave the caller gets.
+  WeaveOptions first = options;
+  std::vector<TraceEvent> held;
+  if (options.on_trace) first.on_trace = [&held](const TraceEvent& e) { held.push_back(e); };
+  const auto forward = [&] {
+    for (const TraceEvent& e : held) options.on_trace(e);
+  };
+  try {
+    WeaveResult r = once(first);
+    forward();
+    return r;
+  } catch (const WeaveError&) {
+    const std::exception_ptr blocked = std::current_exception();
+    WeaveOptions undo = options;
+    undo.undo_seam_blocking_shrinks = true;
+    std::vector<TraceEvent> held_undo;
+    if (options.on_trace)
+      undo.on_trace = [&held_undo](const TraceEvent& e) { held_undo.push_back(e); };
+    try {
+      WeaveResult r = once(undo);
+      held.swap(held_undo);
+      forward();
+      r.stats.seam_undo_retries = 1;
+      return r;
+    } catch (const WeaveError&) {
+      forward();
+      std::rethrow_exception(blocked);
+    }
+  }
 }
 
 WeaveResult run_weave(WeaveState state, const WeaveOptions& options, std::size_t max_rules,

@@ -175,9 +175,20 @@ struct WeaveOptions {
   /// refused (more blocked seams than before it) is undone like a failed one and the next
   /// candidate tried. Such a seam stays refused (the merge would make two hexes share two
   /// faces), and covering either of its two faces leaves a pinched face pair in the complex
-  /// (docs/geometry.md "Pinched faces"). Off by default (loop-clean surfaces weave as
-  /// before); the front-move stage turns it on (`primal::SelfCrossingOptions`).
+  /// (docs/geometry.md "Pinched faces"). Off by default: a weave that completes keeping such
+  /// shrinks is kept as it is (`undo_seam_blocking_on_block` retries the ones that block);
+  /// the front-move stage sets it from `primal::SelfCrossingOptions`.
   bool undo_seam_blocking_shrinks = false;
+  /// `weave` only, with `undo_seam_blocking_shrinks` off, `backtrack` on and no `max_rules` of
+  /// the caller's (a budget given is kept): when the weave ends blocked (its
+  /// block recovery included) or spends its rule budget, it is woven once more from the start
+  /// with `undo_seam_blocking_shrinks` on, and that weave is returned when it completes
+  /// (`WeaveStats::seam_undo_retries`); when it fails too, the first weave's error is thrown.
+  /// A weave that completes is never woven twice, so its result is the same with this on or
+  /// off. Measured on the loop-clean sphere quadrangulations of 18 and 20 quads and on the
+  /// corpus (docs/weave-recovery.md "Seams left blocked"). The trace (`trace`, `on_trace`)
+  /// holds the weave returned, or the first one when both fail; an `observer` sees both.
+  bool undo_seam_blocking_on_block = true;
   /// When set, every trace event is also handed to it as it happens (independently of
   /// `trace`), so that the trace of a weave that throws is not lost.
   std::function<void(const TraceEvent&)> on_trace;
@@ -287,6 +298,10 @@ struct WeaveStats {
   std::size_t recoveries = 0;
   /// Weaves tried from a blocked front by the block recovery (kept or not).
   std::size_t recovery_trials = 0;
+  /// Weaves that blocked keeping the shrinks that leave a seam blocked, whose second weave,
+  /// undoing them, is the one kept (`WeaveOptions::undo_seam_blocking_on_block`): 0 or 1 for
+  /// one weave, summed over the weaves of a cut solid.
+  std::size_t seam_undo_retries = 0;
 };
 
 /// One pillow of the block recovery, as kept in the result.
