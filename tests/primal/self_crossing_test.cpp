@@ -396,8 +396,8 @@ TEST(DepthFilter, AnUncutShellIsWovenWithoutTheDepthFilterUnlessThatBlocks) {
 // The two loop-clean 18-quad shapes of the sphere closure that stay blocked with the block
 // recovery when the weave is not retried undoing the shrinks that leave a seam blocked (67
 // under reliable, 91 under extended, in the closure's order; with that retry both complete,
-// tests/weave/complete_test.cpp) are woven by the stage's ways with `plain_weave_blocked`, which skips
-// re-running the weave that blocked.
+// tests/weave/complete_test.cpp) are woven by the stage's ways with `plain_weave_blocked`, which
+// skips re-running the weave that blocked.
 TEST(SelfCrossing, StageWeavesTheBlockedEighteenQuadSpheres) {
   const std::vector<stc::QuadSurface>& clean = loop_clean_eighteen();
   ASSERT_EQ(clean.size(), 95U);

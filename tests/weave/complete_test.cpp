@@ -155,9 +155,9 @@ Tally weave_loop_clean(const std::vector<stc::QuadSurface>& shapes, RuleSet rule
   std::cout << (shapes.empty() ? 0 : shapes.front().quads.size()) << " quads, " << to_string(rules)
             << ": " << t.shapes << " loop-clean shapes woven (every " << every
             << "), blocked without recovery " << t.blocked << ", completed by the retry "
-            << t.retried << ", still blocked " << t.still
-            << ", recovered hexes max " << (h.empty() ? 0 : h.back()) << " median "
-            << (h.empty() ? 0 : h[h.size() / 2]) << "\n";
+            << t.retried << ", still blocked " << t.still << ", recovered hexes max "
+            << (h.empty() ? 0 : h.back()) << " median " << (h.empty() ? 0 : h[h.size() / 2])
+            << "\n";
   return t;
 }
 
