@@ -102,8 +102,10 @@ void apply_weave_options(const WeaveArgs& args, weave::WeaveOptions& options) {
   options.max_rules = args.max_rules;
   options.block_recovery = weave::block_recovery_from_name(args.block_recovery);
   // The flag switches off every undoing: the retry of a weave that blocked here, and (mesh)
-  // the front-move stage's.
-  options.undo_seam_blocking_on_block = args.undo_seam_blocking_shrinks;
+  // the front-move stage's. --block-recovery off asks for the first block alone: no retry
+  // either (the library's cut balls, which switch their recovery off, keep theirs).
+  options.undo_seam_blocking_on_block =
+      args.undo_seam_blocking_shrinks && options.block_recovery != weave::BlockRecovery::Off;
   weave::check_parameters(options.extended);
 }
 

@@ -338,6 +338,14 @@ TEST_F(Cli, WeavingOptionsAreCheckedAndRecorded) {
   const auto k = nlohmann::json::parse(slurp(report));
   EXPECT_FALSE(k.at("weave_options").at("undo_seam_blocking_on_block").get<bool>());
   EXPECT_EQ(k.at("hexes").get<int>(), 10);
+  // --block-recovery off asks for the first block alone: no retry either.
+  const CliRun first = run("mesh " + data("lblock.obj") + " -o " + out.string() +
+                           " -q --block-recovery off --report " + report.string());
+  ASSERT_EQ(first.code, 0) << first.out;
+  EXPECT_FALSE(nlohmann::json::parse(slurp(report))
+                   .at("weave_options")
+                   .at("undo_seam_blocking_on_block")
+                   .get<bool>());
 }
 
 TEST_F(Cli, TraceNamesTheDecidingFilterAndSurvivesAFailedWeave) {
