@@ -39,18 +39,21 @@ FaceTable face_table(const Front& front, bool angles) {
   for (std::size_t fi = 0; fi < n; ++fi)
     if (front.is_alive(static_cast<FaceIndex>(fi)))
       t.nodes[fi] = front.face(static_cast<FaceIndex>(fi)).nodes;
+  // The lists of the nodes of live faces only, in the order met (a node's list is read where
+  // it starts): late in a weave most nodes made are off the front.
   const std::size_t num_nodes = front.num_nodes();
-  t.first_incident.assign(num_nodes + 1, 0);
-  std::size_t total = 0;
-  for (std::size_t v = 0; v < num_nodes; ++v) {
-    t.first_incident[v] = static_cast<std::uint32_t>(total);
-    total += front.faces_at(NodeId(v)).size();
-  }
-  t.first_incident[num_nodes] = static_cast<std::uint32_t>(total);
-  t.incident.reserve(total);
-  for (std::size_t v = 0; v < num_nodes; ++v) {
-    const auto& list = front.faces_at(NodeId(v));
-    t.incident.insert(t.incident.end(), list.begin(), list.end());
+  t.first_incident.assign(num_nodes, 0);
+  t.incident_count.assign(num_nodes, 0);
+  t.incident.reserve(4 * front.num_faces());
+  for (std::size_t fi = 0; fi < n; ++fi) {
+    if (!front.is_alive(static_cast<FaceIndex>(fi))) continue;
+    for (const NodeId v : t.nodes[fi]) {
+      if (t.incident_count[v.index()] != 0) continue;
+      const auto& list = front.faces_at(v);
+      t.first_incident[v.index()] = static_cast<std::uint32_t>(t.incident.size());
+      t.incident_count[v.index()] = static_cast<std::uint32_t>(list.size());
+      t.incident.insert(t.incident.end(), list.begin(), list.end());
+    }
   }
   return t;
 }

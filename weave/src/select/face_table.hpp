@@ -22,17 +22,18 @@ struct FaceTable {
   /// At `4 f + k`: `edge_angle(front, f, k)`, the same arithmetic on the same floats.
   std::vector<double> angle;
 
-  /// The incidence lists of the nodes, back to back: node `v`'s faces (in `Front::faces_at`
-  /// order) are `incident[first_incident[v] .. first_incident[v + 1])`.
+  /// The incidence lists of the front's nodes, back to back: node `v`'s faces (in
+  /// `Front::faces_at` order) are `incident[first_incident[v] .. + incident_count[v])` (nodes
+  /// off the front: none).
   std::vector<std::uint32_t> first_incident;
+  std::vector<std::uint32_t> incident_count;
   std::vector<FaceIndex> incident;
   /// Per face slot, its nodes (`Front::face(f).nodes`; dead slots: zeros).
   std::vector<stc::Quad> nodes;
 
   /// Node `v`'s faces.
   [[nodiscard]] std::span<const FaceIndex> faces_at(NodeId v) const {
-    const std::size_t b = first_incident[v.index()], e = first_incident[v.index() + 1];
-    return {incident.data() + b, e - b};
+    return {incident.data() + first_incident[v.index()], incident_count[v.index()]};
   }
   [[nodiscard]] const stc::Quad& nodes_of(FaceIndex f) const {
     return nodes[static_cast<std::size_t>(f)];

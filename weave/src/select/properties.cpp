@@ -26,21 +26,29 @@ FrontComponents front_components(const Front& front, Marks& marks) {
   FrontComponents out;
   out.component_of.assign(front.num_nodes(), 0);
   const std::uint32_t mark = marks.fresh(front.num_nodes());
+  // From the live faces, not from every node ever made (the front is a small part of them
+  // late in a weave); the components are then numbered by their smallest node, as a scan of
+  // the nodes in order numbers them.
   std::vector<NodeId> stack;
-  for (std::size_t v = 0; v < front.num_nodes(); ++v) {
-    const NodeId start(v);
-    if (front.valence(start) == 0 || marks.is(v, mark)) continue;
-    const std::size_t comp = out.size.size();
-    out.size.push_back(0);
-    marks.set(v, mark);
+  std::vector<std::pair<std::size_t, std::size_t>> found;  // per component: smallest node, size
+  std::vector<std::pair<NodeId, std::size_t>> members;     // node, component found
+  for (std::size_t fi = 0; fi < front.face_capacity(); ++fi) {
+    const auto f = static_cast<FaceIndex>(fi);
+    if (!front.is_alive(f)) continue;
+    const NodeId start = front.face(f).nodes[0];
+    if (marks.is(start.index(), mark)) continue;
+    const std::size_t comp = found.size();
+    found.emplace_back(start.index(), 0);
+    marks.set(start.index(), mark);
     stack.push_back(start);
     while (!stack.empty()) {
       const NodeId n = stack.back();
       stack.pop_back();
-      out.component_of[n.index()] = comp;
-      ++out.size[comp];
-      for (FaceIndex f : front.faces_at(n)) {
-        for (NodeId m : front.face(f).nodes) {
+      members.emplace_back(n, comp);
+      found[comp].first = std::min(found[comp].first, n.index());
+      ++found[comp].second;
+      for (FaceIndex g : front.faces_at(n)) {
+        for (NodeId m : front.face(g).nodes) {
           if (marks.is(m.index(), mark)) continue;
           marks.set(m.index(), mark);
           stack.push_back(m);
@@ -48,6 +56,17 @@ FrontComponents front_components(const Front& front, Marks& marks) {
       }
     }
   }
+  std::vector<std::size_t> order(found.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return found[a].first < found[b].first; });
+  std::vector<std::size_t> id(found.size());
+  out.size.resize(found.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    id[order[k]] = k;
+    out.size[k] = found[order[k]].second;
+  }
+  for (const auto& [n, comp] : members) out.component_of[n.index()] = id[comp];
   return out;
 }
 
