@@ -1025,7 +1025,6 @@ ShapeReport local_shape(HexMesh& mesh, const std::vector<bool>& fixed,
   return report;
 }
 
-/// Adds the sweeps and moves of `more` to `into` and takes its figures "after".
 /// When no hex is below `shape_target` at the start, the report of a shape phase with nothing
 /// to raise ("target reached", nothing ran), found with one pass over the hexes; otherwise an
 /// empty `stop`. Both orders of `improve_shape` would build their incidence tables and
@@ -1060,6 +1059,7 @@ ShapeReport nothing_below_target(const HexMesh& mesh, const std::vector<bool>& f
   return r;
 }
 
+/// Adds the sweeps and moves of `more` to `into` and takes its figures "after".
 void append_local(ShapeReport& into, const ShapeReport& more) {
   into.ran = into.ran || more.ran;
   into.sweeps += more.sweeps;

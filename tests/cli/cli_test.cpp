@@ -320,10 +320,14 @@ TEST_F(Cli, WeavingOptionsAreCheckedAndRecorded) {
   // The depth filter after a block (the default) is recorded, and so is its retry (none here).
   EXPECT_TRUE(j.at("weave_options").at("depth_filter_after_block").get<bool>());
   EXPECT_TRUE(j.at("depth_filter_retry").is_null());
-  const CliRun always = run("mesh " + data("lblock.obj") + " -o " + out.string() +
-                            " -q --depth-filter-always --report " + report.string());
-  ASSERT_EQ(always.code, 0) << always.out;
-  EXPECT_FALSE(nlohmann::json::parse(slurp(report))
+  // The report of lblock meshed with `flags`.
+  const auto report_with = [&](const std::string& flags) {
+    const CliRun r = run("mesh " + data("lblock.obj") + " -o " + out.string() + " -q " + flags +
+                         " --report " + report.string());
+    EXPECT_EQ(r.code, 0) << flags << ": " << r.out;
+    return nlohmann::json::parse(slurp(report));
+  };
+  EXPECT_FALSE(report_with("--depth-filter-always")
                    .at("weave_options")
                    .at("depth_filter_after_block")
                    .get<bool>());
@@ -332,17 +336,11 @@ TEST_F(Cli, WeavingOptionsAreCheckedAndRecorded) {
   EXPECT_TRUE(j.at("weave_options").at("undo_seam_blocking_on_block").get<bool>());
   EXPECT_FALSE(j.at("weave_options").at("undo_seam_blocking_shrinks").get<bool>());
   EXPECT_EQ(j.at("weave").at("seam_undo_retries").get<int>(), 0);
-  const CliRun keep = run("mesh " + data("lblock.obj") + " -o " + out.string() +
-                          " -q --keep-seam-blocking-shrinks --report " + report.string());
-  ASSERT_EQ(keep.code, 0) << keep.out;
-  const auto k = nlohmann::json::parse(slurp(report));
+  const auto k = report_with("--keep-seam-blocking-shrinks");
   EXPECT_FALSE(k.at("weave_options").at("undo_seam_blocking_on_block").get<bool>());
   EXPECT_EQ(k.at("hexes").get<int>(), 10);
   // --block-recovery off asks for the first block alone: no retry either.
-  const CliRun first = run("mesh " + data("lblock.obj") + " -o " + out.string() +
-                           " -q --block-recovery off --report " + report.string());
-  ASSERT_EQ(first.code, 0) << first.out;
-  EXPECT_FALSE(nlohmann::json::parse(slurp(report))
+  EXPECT_FALSE(report_with("--block-recovery off")
                    .at("weave_options")
                    .at("undo_seam_blocking_on_block")
                    .get<bool>());

@@ -35,18 +35,16 @@ FaceTable face_table(const Front& front, bool angles) {
       }
     }
   }
+  // Face nodes, and the incidence lists of the nodes of live faces only, in the order met (a
+  // node's list is read where it starts): late in a weave most nodes made are off the front.
   t.nodes.assign(n, stc::Quad{});
-  for (std::size_t fi = 0; fi < n; ++fi)
-    if (front.is_alive(static_cast<FaceIndex>(fi)))
-      t.nodes[fi] = front.face(static_cast<FaceIndex>(fi)).nodes;
-  // The lists of the nodes of live faces only, in the order met (a node's list is read where
-  // it starts): late in a weave most nodes made are off the front.
   const std::size_t num_nodes = front.num_nodes();
   t.first_incident.assign(num_nodes, 0);
   t.incident_count.assign(num_nodes, 0);
   t.incident.reserve(4 * front.num_faces());
   for (std::size_t fi = 0; fi < n; ++fi) {
     if (!front.is_alive(static_cast<FaceIndex>(fi))) continue;
+    t.nodes[fi] = front.face(static_cast<FaceIndex>(fi)).nodes;
     for (const NodeId v : t.nodes[fi]) {
       if (t.incident_count[v.index()] != 0) continue;
       const auto& list = front.faces_at(v);

@@ -57,7 +57,7 @@ FrontComponents front_components(const Front& front, Marks& marks) {
     }
   }
   std::vector<std::size_t> order(found.size());
-  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::iota(order.begin(), order.end(), std::size_t{0});
   std::sort(order.begin(), order.end(),
             [&](std::size_t a, std::size_t b) { return found[a].first < found[b].first; });
   std::vector<std::size_t> id(found.size());
