@@ -630,6 +630,36 @@ class Counter final : public WeaveObserver {
   int selections = 0, rules = 0, failures = 0, undone = 0, last_resorts = 0;
 };
 
+// WeaveOptions::undo_seam_blocking_on_block when the second weave fails too: the caller gets
+// the first weave's error, word for word, and the trace streamed is the first weave's.
+TEST(SeamUndoRetry, WhenTheRetryFailsTooTheFirstWeavesErrorIsThrown) {
+  const auto failure = [](WeaveOptions o, std::size_t& events) {
+    events = 0;
+    o.on_trace = [&events](const TraceEvent&) { ++events; };
+    try {
+      (void)weave(doublet_cube(), o);
+    } catch (const WeaveError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  WeaveOptions no_retry;
+  no_retry.undo_seam_blocking_on_block = false;
+  WeaveOptions undo = no_retry;
+  undo.undo_seam_blocking_shrinks = true;
+  std::size_t first_events = 0, undo_events = 0, events = 0;
+  const std::string first = failure(no_retry, first_events);
+  ASSERT_FALSE(first.empty()) << "the doublet cube no longer blocks";
+  ASSERT_FALSE(failure(undo, undo_events).empty())
+      << "the doublet cube now weaves undoing the shrinks: the retry would complete it";
+  // The two weaves stream different traces (9 and 26 events when written), so the count
+  // tells which one reached the caller.
+  ASSERT_NE(undo_events, first_events);
+  const std::string retried = failure(WeaveOptions{}, events);
+  EXPECT_EQ(retried, first);
+  EXPECT_EQ(events, first_events);
+}
+
 TEST(Backtracking, TheDriverUndoesFailedShrinksThenKeepsTheFirstAsALastResort) {
   for (const bool backtrack : {true, false}) {
     Counter counter;
