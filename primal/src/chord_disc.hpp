@@ -37,6 +37,19 @@ struct Disc {
 [[nodiscard]] std::optional<Disc> chord_disc(const std::vector<Eigen::RowVector3d>& cycle_points,
                                              const std::vector<std::size_t>& partner);
 
+/// Whether two arcs of the circle (arc k between the endpoints of edges k and k + 1) lie in
+/// one face of the pairing's chord arrangement. Exact and independent of where the endpoints
+/// sit: each chord splits the disc in two like a line, a face is the set of points on the
+/// same side of every chord, and arc k lies inside chord (a, b), a < b, iff a <= k < b. Such a
+/// pairing has no disc (that face would be a boundary node twice); `chord_disc` checks this
+/// before building any arrangement. \pre `partner` is an involution without fixed points.
+[[nodiscard]] bool arcs_share_a_face(const std::vector<std::size_t>& partner);
+
+/// `chord_disc` without the `arcs_share_a_face` test first: the arrangements alone (same
+/// result, slower on the pairings that test refuses). For tests.
+[[nodiscard]] std::optional<Disc> arrangement_disc(
+    const std::vector<Eigen::RowVector3d>& cycle_points, const std::vector<std::size_t>& partner);
+
 /// Number of chord crossings (disc quads) of the pairing `partner` drawn on a circle: pairs
 /// of chords whose endpoints interleave.
 [[nodiscard]] std::size_t chord_crossings(const std::vector<std::size_t>& partner);
