@@ -135,16 +135,22 @@ std::vector<std::size_t> tree_cycle(const Tree& t, std::size_t u, std::size_t w)
   return cycle;
 }
 
-std::size_t cycle_length(const Tree& t, std::size_t u, std::size_t w) {
+/// Edges of the fundamental cycle of non-tree edge (u, w) in tree `t`, or kNone as soon as
+/// the walk to their common ancestor shows that it has more than `limit` (kNone: always the
+/// exact length): while the two walkers at depth d have not met, the ancestor is at depth
+/// d - 1 or above, so the cycle has at least depth[u] + depth[w] + 1 - 2 (d - 1) edges.
+std::size_t cycle_length_within(const Tree& t, std::size_t u, std::size_t w, std::size_t limit) {
   std::size_t a = u;
   std::size_t b = w;
   while (t.depth[a] > t.depth[b]) a = t.parent[a];
   while (t.depth[b] > t.depth[a]) b = t.parent[b];
+  const std::size_t ends = t.depth[u] + t.depth[w] + 1;  // > 2 depth[a] - 2
   while (a != b) {
+    if (ends + 2 - 2 * t.depth[a] > limit) return kNone;
     a = t.parent[a];
     b = t.parent[b];
   }
-  return t.depth[u] + t.depth[w] + 1 - 2 * t.depth[a];
+  return ends - 2 * t.depth[a];
 }
 
 /// Z2 row reduction: keeps a reduced basis, adds a vector if independent.
@@ -603,14 +609,23 @@ HandleDiagnosis diagnose_handles(const SurfaceMesh& mesh, const HandleOptions& o
           for (std::size_t k = 0; k < words; ++k)
             x[k] = prefix[v * words + k] ^ prefix[w * words + k] ^ mask[e][k];
           if (is_zero(x) || !bounds_inside(x)) continue;
-          const Candidate c{cycle_length(t, v, w), r, v, w};
+          // A cycle longer than the best of its class for this root and overall loses both
+          // comparisons below, so its exact length is not needed (the walk to the common
+          // ancestor was most of this scan's time).
+          auto rb = root_best.find(x);
+          auto it = best.find(x);
+          const std::size_t limit = rb == root_best.end() || it == best.end()
+                                        ? kNone
+                                        : std::max(rb->second.length, it->second.length);
+          const std::size_t length = cycle_length_within(t, v, w, limit);
+          if (length == kNone) continue;
+          const Candidate c{length, r, v, w};
           // A root's own candidate: among the shortest, the one whose lowest common ancestor
           // is nearest the root (the cycle through the root where there is one), so that
           // roots far apart give cycles far apart.
           const auto lca_depth = [&](const Candidate& k) {
             return (t.depth[k.u] + t.depth[k.w] + 1 - k.length) / 2;
           };
-          auto rb = root_best.find(x);
           if (rb == root_best.end()) {
             root_best.emplace(x, c);
           } else if (std::make_tuple(c.length, lca_depth(c), c.u, c.w) <
@@ -618,7 +633,6 @@ HandleDiagnosis diagnose_handles(const SurfaceMesh& mesh, const HandleOptions& o
                                      rb->second.w)) {
             rb->second = c;
           }
-          auto it = best.find(x);
           if (it == best.end()) {
             best.emplace(x, c);
           } else if (std::tie(c.length, c.root, c.u, c.w) <
