@@ -51,6 +51,7 @@ struct MeshArgs {
   int position_newton_steps = primal::PositionOptions{}.max_newton_steps;
   double position_theta = 0.5;
   int shape_sweeps = primal::PositionOptions{}.max_shape_sweeps;
+  int cluster_passes = primal::PositionOptions{}.cluster_passes;
   double shape_target = primal::PositionOptions{}.shape_target;
   double good_start = primal::PositionOptions{}.good_start;
   int certify_depth = 4;
@@ -152,6 +153,15 @@ nlohmann::json position_json(const primal::PositionReport& p) {
           {"repair", repair_json(p.repair)},
           {"repaired_from", p.repaired_from},
           {"other_repair", repair_json(p.other_repair)},
+          {"clusters",
+           {{"ran", p.clusters.ran},
+            {"passes", p.clusters.passes},
+            {"clusters", p.clusters.clusters},
+            {"sub_meshes", p.clusters.sub_problems},
+            {"accepted", p.clusters.accepted},
+            {"inverted_before", p.clusters.inverted_before},
+            {"inverted_after", p.clusters.inverted_after},
+            {"stop", p.clusters.stop}}},
           {"shape",
            {{"ran", p.shape.ran},
             {"sweeps", p.shape.sweeps},
@@ -247,6 +257,7 @@ int run_mesh(const MeshArgs& a) {
   options.position.max_total_iterations = a.position_total_iterations;
   options.position.theta = a.position_theta;
   options.position.max_shape_sweeps = a.shape_sweeps;
+  options.position.cluster_passes = a.cluster_passes;
   options.position.shape_target = a.shape_target;
   options.position.good_start = a.good_start;
   options.position.newton_after = a.position_newton_after;
@@ -282,6 +293,11 @@ int run_mesh(const MeshArgs& a) {
     // and every tenth (a sweep is short, and there are up to a hundred).
     options.position.progress = [](const primal::PositionProgress& p) {
       using Phase = primal::PositionProgress::Phase;
+      if (p.phase == Phase::Clusters) {
+        std::cerr << "stcweave: positioning: local untangling, pass " << p.pass << ", cluster "
+                  << p.step << " of " << p.limit << ": " << p.inverted << " hexes inverted\n";
+        return;
+      }
       if (p.phase != Phase::Untangle && p.step != 1 && p.step % 10 != 0) return;
       std::cerr << "stcweave: positioning: " << primal::phase_name(p.phase)
                 << (p.phase == Phase::Untangle ? " round " : " sweep ") << p.step << " of at most "
@@ -714,6 +730,12 @@ Action add_mesh_command(CLI::App& app) {
       ->check(kFinite)
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
+  sub->add_option("--cluster-passes", args->cluster_passes,
+                  "local untangling after the repair: most passes over the clusters of hexes "
+                  "still inverted, each positioned on its own with its boundary held (0: off; "
+                  "docs/geometry.md \"Local untangling\")")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100));
   sub->add_option("--shape-sweeps", args->shape_sweeps,
                   "shape phase after untangling: most sweeps of local max-min moves that raise "
                   "the worst scaled Jacobian (0: off)")

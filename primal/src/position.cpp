@@ -1156,6 +1156,8 @@ const char* phase_name(PositionProgress::Phase phase) {
       return "repair";
     case PositionProgress::Phase::Shape:
       return "shape";
+    case PositionProgress::Phase::Clusters:
+      return "clusters";
   }
   return "?";
 }
@@ -1495,6 +1497,16 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
     }
   } else {
     report.repair.stop = report.free_nodes > 0 ? "nothing inverted" : "no free node";
+  }
+  if (after.inverted > 0 && report.free_nodes > 0 && options.cluster_passes > 0) {
+    report.clusters = untangle_clusters(mesh, fixed, options);
+    if (report.clusters.accepted > 0) after = summarize_quality(mesh, 0);
+    report.stop += "; local untangling: " + std::to_string(report.clusters.inverted_before) +
+                   " -> " + std::to_string(report.clusters.inverted_after) + " inverted hexes (" +
+                   std::to_string(report.clusters.sub_problems) + " sub-meshes, " +
+                   report.clusters.stop + ")";
+  } else {
+    report.clusters.stop = options.cluster_passes > 0 ? "nothing inverted" : "off";
   }
   report.min_scaled_jacobian_untangled = after.min_scaled_jacobian;
   report.mean_scaled_jacobian_untangled = after.mean_scaled_jacobian;

@@ -135,6 +135,7 @@ TEST(Position, ProgressIsToldEveryRoundAndChangesNothing) {
   EXPECT_STREQ(phase_name(PositionProgress::Phase::Untangle), "untangle");
   EXPECT_STREQ(phase_name(PositionProgress::Phase::Repair), "repair");
   EXPECT_STREQ(phase_name(PositionProgress::Phase::Shape), "shape");
+  EXPECT_STREQ(phase_name(PositionProgress::Phase::Clusters), "clusters");
 }
 
 TEST(Position, ResultDoesNotDependOnTheThreadCount) {

@@ -107,9 +107,11 @@ TEST(Repair, PositionNodesRepairsWhatAnEarlyStopLeaves) {
   EXPECT_TRUE(r.untangled) << r.stop;
   EXPECT_NE(r.stop.find("repair: "), std::string::npos) << r.stop;
   EXPECT_NE(r.shape.stop, "inverted hexes: skipped");
-  // The same without the repair: the early stop keeps its inverted hexes.
+  // The same without the repair (and without the local untangling after it, which would
+  // untangle this box too): the early stop keeps its inverted hexes.
   HexMesh plain = tangled_box(0.9, &fixed);
   options.max_repair_sweeps = 0;
+  options.cluster_passes = 0;
   const PositionReport s = position_nodes(plain, options);
   EXPECT_GT(s.inverted_after, 0u);
   EXPECT_EQ(s.repair.stop, "off");
@@ -159,6 +161,7 @@ TEST(Repair, TheUntangledPositionsAndTheStartAreBothRepairedAndTheBetterKept) {
     o.max_repair_sweeps = 3;
     o.max_shape_sweeps = 0;
     o.barrier_rounds = 0;
+    o.cluster_passes = 0;  // the two repairs alone (the local untangling comes after them)
     HexMesh mesh = start;
     const PositionReport r = position_nodes(mesh, o);
     EXPECT_EQ(summarize_quality(mesh, 0).inverted, r.inverted_after) << "seed " << seed;

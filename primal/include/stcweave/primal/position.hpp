@@ -58,21 +58,26 @@ struct PositionProgress {
   enum class Phase {
     Untangle,  ///< a round of (L-BFGS minimisation, lower eps) on every free node
     Repair,    ///< a sweep of local max-min moves around the hexes still inverted
-    Shape      ///< a sweep of local moves raising the worst hexes (`improve_shape`)
+    Shape,     ///< a sweep of local moves raising the worst hexes (`improve_shape`)
+    Clusters   ///< a cluster of inverted hexes positioned on its own (`untangle_clusters`)
   };
   Phase phase = Phase::Untangle;
-  std::size_t step = 0;   ///< this phase's round or sweep, from 1
-  std::size_t limit = 0;  ///< the phase's bound on rounds or sweeps (from the options)
-  /// Untangle: corners with a non-positive Jacobian after the round; repair and shape:
-  /// hexes with a non-positive scaled Jacobian after the sweep.
+  std::size_t step = 0;   ///< this phase's round or sweep (clusters: cluster of the pass), from 1
+  std::size_t limit = 0;  ///< the phase's bound on rounds or sweeps (clusters: of the pass)
+  /// Untangle: corners with a non-positive Jacobian after the round; repair, shape and
+  /// clusters: hexes with a non-positive scaled Jacobian after the sweep or cluster.
   std::size_t inverted = 0;
   /// Untangle: L-BFGS iterations so far, over every round.
   std::size_t iterations = 0;
-  /// Repair and shape: the worst hex's scaled Jacobian after the sweep (untangle: 0).
+  /// Repair and shape: the worst hex's scaled Jacobian after the sweep (untangle and
+  /// clusters: 0).
   double min_scaled_jacobian = 0.0;
+  /// Clusters: the pass, from 1.
+  std::size_t pass = 0;
 };
 
-/// The phase's name as progress lines and reports write it ("untangle", "repair", "shape").
+/// The phase's name as progress lines and reports write it ("untangle", "repair", "shape",
+/// "clusters").
 [[nodiscard]] const char* phase_name(PositionProgress::Phase phase);
 
 /// Options of `position_nodes`. Defaults are the settings measured to work in
@@ -174,6 +179,15 @@ struct PositionOptions {
   /// Repair: the nodes moved are the free nodes within this many hex rings of an inverted
   /// hex (0: the inverted hexes' own nodes).
   int repair_rings = 2;
+  /// Local untangling after the repair (see `untangle_clusters`): at most this many passes
+  /// over the clusters of hexes still inverted; 0 switches it off.
+  int cluster_passes = 3;
+  /// Local untangling: each cluster's sub-meshes are the cluster grown by 1 .. this many
+  /// rings of hexes sharing a node, each positioned from the current and from the harmonic
+  /// positions.
+  int cluster_max_rings = 3;
+  /// Local untangling: sub-meshes with more hexes than this are not positioned.
+  std::size_t cluster_max_hexes = 20000;
   /// Called after every untangling round and every repair or shape sweep when set (see
   /// `PositionProgress`); the CLI's `--progress` prints it.
   std::function<void(const PositionProgress&)> progress;
@@ -286,6 +300,31 @@ struct RepairReport {
 RepairReport repair_inverted(HexMesh& mesh, const std::vector<bool>& fixed,
                              const PositionOptions& options);
 
+/// What `untangle_clusters` did.
+struct ClusterReport {
+  bool ran = false;              ///< some hex was inverted and the pass was on
+  std::size_t passes = 0;        ///< passes over the clusters
+  std::size_t clusters = 0;      ///< clusters worked on, over every pass
+  std::size_t sub_problems = 0;  ///< sub-meshes positioned
+  std::size_t accepted = 0;      ///< clusters whose best sub-mesh was kept
+  std::size_t inverted_before = 0;
+  std::size_t inverted_after = 0;
+  /// "untangled" (no hex inverted), "settled" (a pass lowered nothing), "pass limit",
+  /// "nothing inverted", "off".
+  std::string stop;
+};
+/// Local untangling of the hexes the untangling and the repair left inverted: the inverted
+/// hexes are grouped in clusters (hexes sharing a node), and each cluster grown by 1 ..
+/// `cluster_max_rings` rings is positioned on its own by `position_nodes`, its boundary nodes
+/// held, from the current positions and from the harmonic ones (without the shape phase).
+/// The best of those (fewest inverted hexes, then the largest worst scaled Jacobian, judged
+/// over the widest sub-mesh) is kept when it beats the current positions, so no hex gets
+/// worse than the worst one there and the inverted count never rises. Up to
+/// `cluster_passes` passes, while a pass lowers the count. Deterministic.
+/// docs/geometry.md "Local untangling" has the measurements.
+/// \pre `fixed.size() == mesh.points.rows()` (checked: InvalidInput).
+ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
+                                const PositionOptions& options);
 /// A hex corner that no position of the free nodes can make positive.
 struct ImpossibleCorner {
   HexId hex;
@@ -350,6 +389,9 @@ struct PositionReport {
   /// minimum): this is the repair of the positions not kept (`ran` false when it did not
   /// run, e.g. when the start had been kept over the untangled positions already).
   RepairReport other_repair;
+  /// The local untangling of the clusters still inverted after the repair
+  /// (`untangle_clusters`).
+  ClusterReport clusters;
   ShapeReport shape;  ///< the shape phase after untangling
 };
 

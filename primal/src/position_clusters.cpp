@@ -1,0 +1,284 @@
+// Local untangling of the clusters of hexes the global positioning leaves inverted
+// (`untangle_clusters`, docs/geometry.md "Local untangling").
+//
+// Why: the untangling energy of `position_nodes` is minimised over every free node at once,
+// with one eps schedule for the whole mesh; where a few corners stay negative it stalls, and
+// the repair's max-min moves, one node at a time, stall too. The same energy minimised on a
+// small sub-mesh around the stuck hexes, its boundary held, starts its own eps schedule from
+// that sub-mesh's worst corner and often finds positions the global problem did not (measured:
+// `pmp/fandisk_quads` with `extended` 23 -> 1 inverted hexes, `gmsh-quad/cylinder2_c3` 20 -> 3).
+// Which sub-mesh works is not predictable (one ring more or less, the current positions or
+// the harmonic ones), so a few are tried and the best kept; a sub-mesh's result is kept only
+// when it has fewer inverted hexes (or as many and a better worst one), so the mesh never gets
+// worse.
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <vector>
+
+#include "stcweave/primal/position.hpp"
+#include "stcweave/primal/quality.hpp"
+#include "stcweave/stc/errors.hpp"
+#include "stcweave/stc/quad_surface.hpp"
+
+namespace stcweave::primal {
+namespace {
+
+constexpr std::size_t kUnset = std::numeric_limits<std::size_t>::max();
+
+/// Inverted hexes (scaled Jacobian <= 0) among `hexes`, and the worst scaled Jacobian.
+struct Tally {
+  std::size_t inverted = 0;
+  double worst = std::numeric_limits<double>::infinity();
+};
+
+Tally tally(const Points& points, const std::vector<stc::Hex>& all,
+            const std::vector<std::size_t>& hexes) {
+  Tally t;
+  for (const std::size_t h : hexes) {
+    const double sj = hex_scaled_jacobian(points, all[h]);
+    t.inverted += sj <= 0.0 ? 1 : 0;
+    t.worst = std::min(t.worst, sj);
+  }
+  return t;
+}
+
+bool better(const Tally& a, const Tally& b) {
+  return a.inverted < b.inverted || (a.inverted == b.inverted && a.worst > b.worst);
+}
+
+/// The clusters of `inverted` (sorted hex ids): components under "shares a node", each listed
+/// in increasing hex order, ordered by their smallest hex.
+std::vector<std::vector<std::size_t>> clusters_of(
+    const std::vector<std::size_t>& inverted, const std::vector<stc::Hex>& hexes,
+    const std::vector<std::vector<std::size_t>>& node_hexes) {
+  std::vector<char> is_inverted(hexes.size(), 0);
+  for (const std::size_t h : inverted) is_inverted[h] = 1;
+  std::vector<char> seen(hexes.size(), 0);
+  std::vector<std::vector<std::size_t>> out;
+  for (const std::size_t s : inverted) {
+    if (seen[s] != 0) continue;
+    seen[s] = 1;
+    std::vector<std::size_t> cluster{s};
+    for (std::size_t k = 0; k < cluster.size(); ++k) {
+      for (const NodeId v : hexes[cluster[k]]) {
+        for (const std::size_t g : node_hexes[v.index()]) {
+          if (is_inverted[g] == 0 || seen[g] != 0) continue;
+          seen[g] = 1;
+          cluster.push_back(g);
+        }
+      }
+    }
+    std::sort(cluster.begin(), cluster.end());
+    out.push_back(std::move(cluster));
+  }
+  return out;
+}
+
+/// `cluster` grown by `rings` layers of hexes sharing a node, sorted.
+std::vector<std::size_t> grown(const std::vector<std::size_t>& cluster, int rings,
+                               const std::vector<stc::Hex>& hexes,
+                               const std::vector<std::vector<std::size_t>>& node_hexes) {
+  std::vector<char> in(hexes.size(), 0);
+  std::vector<std::size_t> out = cluster;
+  for (const std::size_t h : out) in[h] = 1;
+  std::size_t layer_start = 0;
+  for (int r = 0; r < rings; ++r) {
+    const std::size_t layer_end = out.size();
+    for (std::size_t k = layer_start; k < layer_end; ++k) {
+      for (const NodeId v : hexes[out[k]]) {
+        for (const std::size_t g : node_hexes[v.index()]) {
+          if (in[g] != 0) continue;
+          in[g] = 1;
+          out.push_back(g);
+        }
+      }
+    }
+    layer_start = layer_end;
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+/// The sub-mesh of `hexes` (ids into `mesh`) over its own node ids, with its fixed mask: the
+/// nodes fixed in `mesh` and the nodes on its boundary faces (faces of one sub-mesh hex), so
+/// that every node it may move has all its hexes inside it.
+struct SubMesh {
+  HexMesh mesh;
+  std::vector<bool> fixed;
+  std::vector<NodeId> node_of;  ///< per local node, the node of the whole mesh
+};
+
+SubMesh sub_mesh(const HexMesh& mesh, const std::vector<bool>& fixed,
+                 const std::vector<std::size_t>& hexes) {
+  SubMesh s;
+  std::map<std::int32_t, std::int32_t> local;
+  for (const std::size_t h : hexes)
+    for (const NodeId v : mesh.complex.hexes[h]) local.emplace(v.value(), 0);
+  for (auto& [global, id] : local) {
+    id = static_cast<std::int32_t>(s.node_of.size());
+    s.node_of.emplace_back(global);
+  }
+  s.mesh.points.resize(static_cast<Eigen::Index>(s.node_of.size()), 3);
+  for (std::size_t v = 0; v < s.node_of.size(); ++v)
+    s.mesh.points.row(static_cast<Eigen::Index>(v)) = mesh.points.row(s.node_of[v].value());
+  s.mesh.complex.num_nodes = s.node_of.size();
+  for (const std::size_t h : hexes) {
+    stc::Hex x = mesh.complex.hexes[h];
+    for (NodeId& v : x) v = NodeId(local.at(v.value()));
+    s.mesh.complex.hexes.push_back(x);
+  }
+  s.fixed.assign(s.node_of.size(), false);
+  for (std::size_t v = 0; v < s.node_of.size(); ++v) s.fixed[v] = fixed[s.node_of[v].index()];
+  std::map<std::array<std::int32_t, 4>, int> faces;
+  for (const stc::Hex& x : s.mesh.complex.hexes) {
+    for (const auto& f : stc::kHexFaces) {
+      std::array<std::int32_t, 4> key{};
+      for (std::size_t k = 0; k < 4; ++k) key[k] = x[static_cast<std::size_t>(f[k])].value();
+      std::sort(key.begin(), key.end());
+      ++faces[key];
+    }
+  }
+  for (const auto& [key, count] : faces)
+    if (count == 1)
+      for (const std::int32_t v : key) s.fixed[static_cast<std::size_t>(v)] = true;
+  return s;
+}
+
+}  // namespace
+
+ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
+                                const PositionOptions& options) {
+  ClusterReport report;
+  const std::vector<stc::Hex>& hexes = mesh.complex.hexes;
+  const auto num_nodes = static_cast<std::size_t>(mesh.points.rows());
+  if (fixed.size() != num_nodes) {
+    throw InvalidInput("untangle_clusters: the fixed mask has " + std::to_string(fixed.size()) +
+                       " entries for " + std::to_string(num_nodes) + " nodes");
+  }
+  std::vector<std::vector<std::size_t>> node_hexes(num_nodes);
+  for (std::size_t h = 0; h < hexes.size(); ++h) {
+    for (const NodeId v : hexes[h]) {
+      if (!v.is_valid() || v.index() >= num_nodes) {
+        throw InvalidInput("untangle_clusters: hex h" + std::to_string(h) + " names node " +
+                           v.str() + " out of range (" + std::to_string(num_nodes) + " nodes)");
+      }
+      node_hexes[v.index()].push_back(h);
+    }
+  }
+  const auto inverted_hexes = [&]() {
+    std::vector<std::size_t> out;
+    for (std::size_t h = 0; h < hexes.size(); ++h)
+      if (hex_scaled_jacobian(mesh.points, hexes[h]) <= 0.0) out.push_back(h);
+    return out;
+  };
+  std::vector<std::size_t> inverted = inverted_hexes();
+  report.inverted_before = report.inverted_after = inverted.size();
+  if (options.cluster_passes <= 0) {
+    report.stop = "off";
+    return report;
+  }
+  if (inverted.empty()) {
+    report.stop = "nothing inverted";
+    return report;
+  }
+  report.ran = true;
+  // The sub-problems: the global untangling's settings, without the shape phase (run on the
+  // whole mesh afterwards), this pass, progress or certification.
+  PositionOptions sub_options = options;
+  sub_options.cluster_passes = 0;
+  sub_options.max_shape_sweeps = 0;
+  sub_options.barrier_rounds = 0;
+  sub_options.certify_depth = 0;
+  sub_options.num_fixed = 0;
+  sub_options.progress = nullptr;
+  sub_options.good_start = 2.0;  // a sub-mesh always has an inverted hex: never "good"
+  report.stop = "pass limit";
+  for (int pass = 0; pass < options.cluster_passes; ++pass) {
+    ++report.passes;
+    const std::size_t at_pass_start = inverted.size();
+    std::size_t inverted_now = at_pass_start;
+    const std::vector<std::vector<std::size_t>> clusters = clusters_of(inverted, hexes, node_hexes);
+    for (std::size_t c = 0; c < clusters.size(); ++c) {
+      ++report.clusters;
+      // The sub-meshes tried for this cluster lie inside the widest one: each is judged by
+      // the hexes of that one (all the hexes any of them can change), and the best kept.
+      const std::vector<std::size_t> widest_hexes =
+          grown(clusters[c], options.cluster_max_rings, hexes, node_hexes);
+      SubMesh wide = sub_mesh(mesh, fixed, widest_hexes);
+      std::map<std::int32_t, std::size_t> wide_local;
+      for (std::size_t v = 0; v < wide.node_of.size(); ++v)
+        wide_local.emplace(wide.node_of[v].value(), v);
+      const std::vector<std::size_t> all_wide = [&]() {
+        std::vector<std::size_t> ids(wide.mesh.complex.hexes.size());
+        for (std::size_t k = 0; k < ids.size(); ++k) ids[k] = k;
+        return ids;
+      }();
+      const Tally at_start = tally(wide.mesh.points, wide.mesh.complex.hexes, all_wide);
+      if (at_start.inverted == 0) continue;  // an earlier cluster's sub-mesh untangled it
+      Tally best = at_start;
+      Points best_points;
+      // In order, and no further once a sub-mesh leaves none of them inverted.
+      for (int rings = 1; rings <= options.cluster_max_rings && best.inverted > 0; ++rings) {
+        const std::vector<std::size_t> hexes_in = grown(clusters[c], rings, hexes, node_hexes);
+        if (hexes_in.size() > options.cluster_max_hexes) break;
+        for (const StartPosition start : {StartPosition::Keep, StartPosition::Harmonic}) {
+          if (best.inverted == 0) break;
+          SubMesh sub = sub_mesh(mesh, fixed, hexes_in);
+          sub_options.fixed = sub.fixed;
+          sub_options.start = start;
+          ++report.sub_problems;
+          try {
+            (void)position_nodes(sub.mesh, sub_options);
+          } catch (const InvalidInput&) {
+            continue;  // a sub-mesh whose total volume is not positive: too tangled here
+          } catch (const SolverError&) {
+            continue;  // a harmonic start with a free node cut off from the fixed ones
+          }
+          Points trial = wide.mesh.points;
+          for (std::size_t v = 0; v < sub.node_of.size(); ++v) {
+            trial.row(static_cast<Eigen::Index>(wide_local.at(sub.node_of[v].value()))) =
+                sub.mesh.points.row(static_cast<Eigen::Index>(v));
+          }
+          const Tally t = tally(trial, wide.mesh.complex.hexes, all_wide);
+          if (better(t, best)) {
+            best = t;
+            best_points = std::move(trial);
+          }
+        }
+      }
+      if (better(best, at_start)) {
+        for (std::size_t v = 0; v < wide.node_of.size(); ++v)
+          mesh.points.row(wide.node_of[v].value()) = best_points.row(static_cast<Eigen::Index>(v));
+        ++report.accepted;
+        inverted_now = inverted_now - at_start.inverted + best.inverted;
+      }
+      if (options.progress) {
+        PositionProgress p;
+        p.phase = PositionProgress::Phase::Clusters;
+        p.step = c + 1;
+        p.limit = clusters.size();
+        p.pass = report.passes;
+        p.inverted = inverted_now;
+        options.progress(p);
+      }
+    }
+    inverted = inverted_hexes();
+    report.inverted_after = inverted.size();
+    if (inverted.empty()) {
+      report.stop = "untangled";
+      break;
+    }
+    if (inverted.size() >= at_pass_start) {
+      report.stop = "settled";
+      break;
+    }
+  }
+  return report;
+}
+
+}  // namespace stcweave::primal

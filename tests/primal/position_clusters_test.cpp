@@ -1,0 +1,200 @@
+// Local untangling of the clusters of hexes left inverted (`untangle_clusters`,
+// docs/geometry.md "Local untangling"): sub-meshes around each cluster positioned on their
+// own, boundary held, the best kept.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+
+#include "position_helpers.hpp"
+#include "stcweave/primal/position.hpp"
+#include "stcweave/primal/quality.hpp"
+#include "stcweave/stc/errors.hpp"
+#include "support/shapes.hpp"
+
+namespace stcweave::primal {
+namespace {
+
+/// A 7x7x7 box, boundary first and fixed, with interior node `moved` pushed by `shift`
+/// (in edge lengths) along x: the hexes around it fold over.
+HexMesh box_with_a_fold(std::vector<bool>* fixed, std::size_t* moved, double shift) {
+  HexMesh mesh = test::box_hexes(7, 7, 7);
+  const std::size_t num_fixed = test::boundary_first(mesh);
+  fixed->assign(static_cast<std::size_t>(mesh.points.rows()), false);
+  for (std::size_t v = 0; v < num_fixed; ++v) (*fixed)[v] = true;
+  // The interior node nearest the centre (3.5, 3.5, 3.5) of the box: (3, 3, 3).
+  std::size_t best = num_fixed;
+  for (std::size_t v = num_fixed; v < fixed->size(); ++v) {
+    const Eigen::RowVector3d p = mesh.points.row(static_cast<Eigen::Index>(v));
+    if ((p - Eigen::RowVector3d(3, 3, 3)).norm() < 1e-9) best = v;
+  }
+  mesh.points(static_cast<Eigen::Index>(best), 0) += shift;
+  *moved = best;
+  return mesh;
+}
+
+/// The hexes sharing a node with a hex that has node `v`, `rings` times over.
+std::set<std::size_t> rings_around(const HexMesh& mesh, std::size_t v, int rings) {
+  std::set<std::size_t> nodes{v};
+  std::set<std::size_t> hexes;
+  for (int r = 0; r <= rings; ++r) {
+    for (std::size_t h = 0; h < mesh.complex.hexes.size(); ++h)
+      for (const NodeId n : mesh.complex.hexes[h])
+        if (nodes.count(n.index()) != 0) hexes.insert(h);
+    for (const std::size_t h : hexes)
+      for (const NodeId n : mesh.complex.hexes[h]) nodes.insert(n.index());
+  }
+  return hexes;
+}
+
+TEST(LocalUntangling, UnfoldsAClusterAndMovesNothingOutsideItsSubMeshes) {
+  std::vector<bool> fixed;
+  std::size_t moved = 0;
+  HexMesh mesh = box_with_a_fold(&fixed, &moved, 1.6);
+  const QualitySummary before = summarize_quality(mesh, 0);
+  ASSERT_GT(before.inverted, 0U) << "the test needs a fold";
+  const Points start = mesh.points;
+  PositionOptions options;
+  std::vector<PositionProgress> told;
+  options.progress = [&](const PositionProgress& p) { told.push_back(p); };
+  const ClusterReport r = untangle_clusters(mesh, fixed, options);
+  EXPECT_TRUE(r.ran);
+  // One progress call per cluster of every pass, the last with the count left.
+  ASSERT_EQ(told.size(), r.clusters);
+  for (const PositionProgress& p : told) {
+    EXPECT_EQ(p.phase, PositionProgress::Phase::Clusters);
+    EXPECT_GE(p.step, 1U);
+    EXPECT_LE(p.step, p.limit);
+    EXPECT_GE(p.pass, 1U);
+  }
+  EXPECT_EQ(told.back().inverted, 0U);
+  EXPECT_EQ(r.inverted_before, before.inverted);
+  EXPECT_EQ(r.inverted_after, 0U);
+  EXPECT_EQ(r.stop, "untangled");
+  EXPECT_GE(r.accepted, 1U);
+  EXPECT_GE(r.sub_problems, 1U);
+  EXPECT_EQ(summarize_quality(mesh, 0).inverted, 0U);
+  // Only nodes strictly inside the widest sub-mesh (the inverted hexes and 3 rings) move.
+  std::set<std::size_t> inside;
+  const std::set<std::size_t> wide = rings_around(mesh, moved, 1 + options.cluster_max_rings);
+  for (const std::size_t h : wide)
+    for (const NodeId n : mesh.complex.hexes[h]) inside.insert(n.index());
+  std::size_t moved_nodes = 0;
+  for (std::size_t v = 0; v < fixed.size(); ++v) {
+    const bool same =
+        mesh.points.row(static_cast<Eigen::Index>(v)) == start.row(static_cast<Eigen::Index>(v));
+    if (!same) ++moved_nodes;
+    if (fixed[v]) EXPECT_TRUE(same) << "fixed node n" << v << " moved";
+    if (inside.count(v) == 0) EXPECT_TRUE(same) << "node n" << v << " far from the fold moved";
+  }
+  EXPECT_GT(moved_nodes, 0U);
+}
+
+TEST(LocalUntangling, NeverRaisesTheInvertedCountWhereNothingCanMove) {
+  // A fold whose nodes are all fixed: no sub-mesh can move anything, the mesh is unchanged
+  // and the pass says it settled.
+  std::vector<bool> fixed;
+  std::size_t moved = 0;
+  HexMesh mesh = box_with_a_fold(&fixed, &moved, 1.6);
+  std::fill(fixed.begin(), fixed.end(), true);
+  const Points start = mesh.points;
+  const std::size_t inverted = summarize_quality(mesh, 0).inverted;
+  const ClusterReport r = untangle_clusters(mesh, fixed, {});
+  EXPECT_TRUE(r.ran);
+  EXPECT_EQ(r.inverted_after, inverted);
+  EXPECT_EQ(r.accepted, 0U);
+  EXPECT_EQ(r.stop, "settled");
+  EXPECT_EQ(r.passes, 1U);
+  EXPECT_TRUE(mesh.points == start);
+}
+
+TEST(LocalUntangling, OffOrNothingInvertedLeavesTheMeshAlone) {
+  std::vector<bool> fixed;
+  std::size_t moved = 0;
+  HexMesh folded = box_with_a_fold(&fixed, &moved, 1.6);
+  const Points start = folded.points;
+  PositionOptions off;
+  off.cluster_passes = 0;
+  const ClusterReport r = untangle_clusters(folded, fixed, off);
+  EXPECT_FALSE(r.ran);
+  EXPECT_EQ(r.stop, "off");
+  EXPECT_TRUE(folded.points == start);
+
+  HexMesh valid = box_with_a_fold(&fixed, &moved, 0.2);
+  ASSERT_EQ(summarize_quality(valid, 0).inverted, 0U);
+  const Points valid_start = valid.points;
+  const ClusterReport n = untangle_clusters(valid, fixed, {});
+  EXPECT_FALSE(n.ran);
+  EXPECT_EQ(n.stop, "nothing inverted");
+  EXPECT_TRUE(valid.points == valid_start);
+}
+
+TEST(LocalUntangling, RunsInPositionNodesWhenHexesStayInverted) {
+  // Every node of the hexes at the folded node held: no position unfolds them, so hexes stay
+  // inverted after the untangling and the repair, and `position_nodes` runs the local pass
+  // on the free nodes around them (which cannot raise their count either).
+  std::vector<bool> fixed;
+  std::size_t moved = 0;
+  HexMesh mesh = box_with_a_fold(&fixed, &moved, 1.6);
+  for (const stc::Hex& h : mesh.complex.hexes)
+    if (std::find(h.begin(), h.end(), NodeId(moved)) != h.end())
+      for (const NodeId n : h) fixed[n.index()] = true;
+  PositionOptions options;
+  options.fixed = fixed;
+  const PositionReport r = position_nodes(mesh, options);
+  ASSERT_GT(r.inverted_after, 0U) << r.stop;
+  EXPECT_TRUE(r.clusters.ran);
+  EXPECT_GE(r.clusters.sub_problems, 1U);
+  EXPECT_LE(r.clusters.inverted_after, r.clusters.inverted_before);
+  EXPECT_EQ(r.clusters.inverted_after, r.inverted_after);
+  EXPECT_NE(r.stop.find("; local untangling: "), std::string::npos) << r.stop;
+
+  // Off: the report says so and nothing runs.
+  HexMesh again = box_with_a_fold(&fixed, &moved, 1.6);
+  options.cluster_passes = 0;
+  const PositionReport off = position_nodes(again, options);
+  EXPECT_FALSE(off.clusters.ran);
+  EXPECT_EQ(off.clusters.stop, "off");
+  EXPECT_EQ(off.stop.find("local untangling"), std::string::npos) << off.stop;
+}
+
+TEST(LocalUntangling, UntanglesInPositionNodesWhatTheRoundsAndTheRepairLeft) {
+  // No untangling round and no repair: the fold is left to the local pass, which unfolds it;
+  // the shape phase then runs on a valid mesh.
+  std::vector<bool> fixed;
+  std::size_t moved = 0;
+  HexMesh mesh = box_with_a_fold(&fixed, &moved, 1.6);
+  PositionOptions options;
+  options.fixed = fixed;
+  options.start = StartPosition::Keep;
+  options.max_outer_iterations = 0;
+  options.max_repair_sweeps = 0;
+  const PositionReport r = position_nodes(mesh, options);
+  EXPECT_GT(r.inverted_before, 0U);
+  EXPECT_TRUE(r.clusters.ran);
+  EXPECT_EQ(r.clusters.stop, "untangled");
+  EXPECT_EQ(r.inverted_after, 0U) << r.stop;
+  EXPECT_TRUE(r.untangled) << r.stop;
+  EXPECT_NE(r.shape.stop, "inverted hexes: skipped");
+  EXPECT_EQ(summarize_quality(mesh, 0).inverted, 0U);
+}
+
+TEST(LocalUntangling, RefusesAMaskOfTheWrongSize) {
+  HexMesh mesh = test::box_hexes(2, 2, 2);
+  EXPECT_THROW((void)untangle_clusters(mesh, std::vector<bool>(3, false), {}), InvalidInput);
+}
+
+TEST(LocalUntangling, IsDeterministic) {
+  std::vector<bool> fixed;
+  std::size_t moved = 0;
+  HexMesh a = box_with_a_fold(&fixed, &moved, 1.6);
+  HexMesh b = a;
+  PositionOptions one_thread;
+  one_thread.threads = 1;
+  (void)untangle_clusters(a, fixed, {});
+  (void)untangle_clusters(b, fixed, one_thread);
+  EXPECT_TRUE(a.points == b.points);
+}
+
+}  // namespace
+}  // namespace stcweave::primal
