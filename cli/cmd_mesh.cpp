@@ -159,6 +159,7 @@ nlohmann::json position_json(const primal::PositionReport& p) {
             {"clusters", p.clusters.clusters},
             {"sub_meshes", p.clusters.sub_problems},
             {"accepted", p.clusters.accepted},
+            {"work", p.clusters.work},
             {"inverted_before", p.clusters.inverted_before},
             {"inverted_after", p.clusters.inverted_after},
             {"stop", p.clusters.stop}}},

@@ -198,12 +198,13 @@ ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
   sub_options.progress = nullptr;
   sub_options.good_start = 2.0;  // a sub-mesh always has an inverted hex: never "good"
   report.stop = "pass limit";
-  for (int pass = 0; pass < options.cluster_passes; ++pass) {
+  bool work_bound = false;
+  for (int pass = 0; pass < options.cluster_passes && !work_bound; ++pass) {
     ++report.passes;
     const std::size_t at_pass_start = inverted.size();
     std::size_t inverted_now = at_pass_start;
     const std::vector<std::vector<std::size_t>> clusters = clusters_of(inverted, hexes, node_hexes);
-    for (std::size_t c = 0; c < clusters.size(); ++c) {
+    for (std::size_t c = 0; c < clusters.size() && !work_bound; ++c) {
       ++report.clusters;
       // The sub-meshes tried for this cluster lie inside the widest one: each is judged by
       // the hexes of that one (all the hexes any of them can change), and the best kept.
@@ -223,7 +224,8 @@ ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
       Tally best = at_start;
       Points best_points;
       // In order, and no further once a sub-mesh leaves none of them inverted.
-      for (int rings = 1; rings <= options.cluster_max_rings && best.inverted > 0; ++rings) {
+      for (int rings = 1; rings <= options.cluster_max_rings && best.inverted > 0 && !work_bound;
+           ++rings) {
         const std::vector<std::size_t> hexes_in = grown(clusters[c], rings, hexes, node_hexes);
         if (hexes_in.size() > options.cluster_max_hexes) break;
         for (const StartPosition start : {StartPosition::Keep, StartPosition::Harmonic}) {
@@ -231,9 +233,14 @@ ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
           SubMesh sub = sub_mesh(mesh, fixed, hexes_in);
           sub_options.fixed = sub.fixed;
           sub_options.start = start;
+          if (options.cluster_max_work > 0 && report.work >= options.cluster_max_work) {
+            work_bound = true;
+            break;
+          }
           ++report.sub_problems;
           try {
-            (void)position_nodes(sub.mesh, sub_options);
+            const PositionReport r = position_nodes(sub.mesh, sub_options);
+            report.work += sub.mesh.complex.hexes.size() * std::max<std::size_t>(1, r.iterations);
           } catch (const InvalidInput&) {
             continue;  // a sub-mesh whose total volume is not positive: too tangled here
           } catch (const SolverError&) {
@@ -271,6 +278,10 @@ ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
     report.inverted_after = inverted.size();
     if (inverted.empty()) {
       report.stop = "untangled";
+      break;
+    }
+    if (work_bound) {
+      report.stop = "work bound";
       break;
     }
     if (inverted.size() >= at_pass_start) {

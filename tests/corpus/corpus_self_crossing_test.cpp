@@ -5,6 +5,8 @@
 // docs/self-intersecting-loops.md).
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include <nlohmann/json.hpp>
 
 #include "stcweave/primal/diagnose.hpp"
@@ -134,6 +136,23 @@ TEST(CorpusSelfCrossing, CurlSlideUntanglesCylinder) {
   const stc::LoopSet loops = stc::find_loops(now.front, {.sides = false});
   EXPECT_EQ(loops.num_self_crossing_quads(), 0U);
   EXPECT_TRUE(test::is_strong_quadrangulation(now.front));
+}
+
+// What a user receives for Gmsh's cylinder2_c3 with default options (positioning included):
+// the untangling and its repair leave 20 hexes inverted; the local untangling of their
+// clusters (primal::untangle_clusters, docs/geometry.md "Local untangling") leaves none.
+// About a minute (most of it in the sub-meshes' untangling).
+TEST(CorpusSelfCrossing, CylinderIsMeshedWithNoInvertedHex) {
+  const auto path = test::shared_data() / "real/gmsh-quad/cylinder2_c3.boundary.obj";
+  if (!std::filesystem::exists(path))
+    GTEST_SKIP() << "shared data not found at " << STCWEAVE_SHARED_DATA;
+  const primal::MeshResult r = primal::mesh_file(primal::read_mesh(path), primal::MeshOptions{});
+  EXPECT_TRUE(r.validation.valid) << r.validation.summary();
+  EXPECT_TRUE(r.validation.boundary_compared);
+  EXPECT_TRUE(r.position.clusters.ran) << r.position.stop;
+  EXPECT_GT(r.position.clusters.inverted_before, 0U) << r.position.stop;
+  EXPECT_EQ(r.position.inverted_after, 0U) << r.position.stop;
+  EXPECT_GT(r.position.min_scaled_jacobian_after, 0.0) << r.position.stop;
 }
 
 }  // namespace

@@ -108,6 +108,26 @@ TEST(LocalUntangling, NeverRaisesTheInvertedCountWhereNothingCanMove) {
   EXPECT_TRUE(mesh.points == start);
 }
 
+TEST(LocalUntangling, StopsAtTheWorkBound) {
+  // Nothing can move (all nodes fixed), so every sub-mesh fails; with a bound of one unit of
+  // work the first sub-mesh reaches it and no other is started.
+  std::vector<bool> fixed;
+  std::size_t moved = 0;
+  HexMesh mesh = box_with_a_fold(&fixed, &moved, 1.6);
+  std::fill(fixed.begin(), fixed.end(), true);
+  PositionOptions options;
+  options.cluster_max_work = 1;
+  const ClusterReport r = untangle_clusters(mesh, fixed, options);
+  EXPECT_EQ(r.sub_problems, 1U);
+  EXPECT_GE(r.work, 1U);
+  EXPECT_EQ(r.stop, "work bound");
+  // Unbounded, the same cluster gets its six sub-meshes (1 to 3 rings, two starts each).
+  options.cluster_max_work = 0;
+  const ClusterReport all = untangle_clusters(mesh, fixed, options);
+  EXPECT_EQ(all.sub_problems, 6U);
+  EXPECT_EQ(all.stop, "settled");
+}
+
 TEST(LocalUntangling, OffOrNothingInvertedLeavesTheMeshAlone) {
   std::vector<bool> fixed;
   std::size_t moved = 0;

@@ -188,6 +188,12 @@ struct PositionOptions {
   int cluster_max_rings = 3;
   /// Local untangling: sub-meshes with more hexes than this are not positioned.
   std::size_t cluster_max_hexes = 20000;
+  /// Local untangling: no sub-mesh is started once the sub-meshes' work (their hexes times
+  /// their L-BFGS iterations, summed) has reached this (0: no bound). The default, about
+  /// 100 s on the 2-core development machine, is 2.4 times what `gmsh-quad/cylinder2_c3`
+  /// spends (4.2e7) and above `pmp/fandisk_quads` (3.1e7 and 3.9e7; docs/geometry.md "Local
+  /// untangling").
+  std::size_t cluster_max_work = 100000000;
   /// Called after every untangling round and every repair or shape sweep when set (see
   /// `PositionProgress`); the CLI's `--progress` prints it.
   std::function<void(const PositionProgress&)> progress;
@@ -307,10 +313,12 @@ struct ClusterReport {
   std::size_t clusters = 0;      ///< clusters worked on, over every pass
   std::size_t sub_problems = 0;  ///< sub-meshes positioned
   std::size_t accepted = 0;      ///< clusters whose best sub-mesh was kept
+  /// The sub-meshes' hexes times their L-BFGS iterations, summed (`cluster_max_work`).
+  std::size_t work = 0;
   std::size_t inverted_before = 0;
   std::size_t inverted_after = 0;
   /// "untangled" (no hex inverted), "settled" (a pass lowered nothing), "pass limit",
-  /// "nothing inverted", "off".
+  /// "work bound" (`cluster_max_work`), "nothing inverted", "off".
   std::string stop;
 };
 /// Local untangling of the hexes the untangling and the repair left inverted: the inverted
