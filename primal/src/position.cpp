@@ -1506,7 +1506,9 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
                    std::to_string(report.clusters.sub_problems) + " sub-meshes, " +
                    report.clusters.stop + ")";
   } else {
-    report.clusters.stop = options.cluster_passes > 0 ? "nothing inverted" : "off";
+    report.clusters.stop = options.cluster_passes <= 0 ? "off"
+                           : report.free_nodes > 0     ? "nothing inverted"
+                                                       : "no free node";
   }
   report.min_scaled_jacobian_untangled = after.min_scaled_jacobian;
   report.mean_scaled_jacobian_untangled = after.mean_scaled_jacobian;

@@ -6,11 +6,11 @@
 // the repair's max-min moves, one node at a time, stall too. The same energy minimised on a
 // small sub-mesh around the stuck hexes, its boundary held, starts its own eps schedule from
 // that sub-mesh's worst corner and often finds positions the global problem did not (measured:
-// `pmp/fandisk_quads` with `extended` 23 -> 1 inverted hexes, `gmsh-quad/cylinder2_c3` 20 -> 3).
+// `pmp/fandisk_quads` with `extended` 23 -> 1 inverted hexes, `gmsh-quad/cylinder2_c3` 20 -> 0).
 // Which sub-mesh works is not predictable (one ring more or less, the current positions or
 // the harmonic ones), so a few are tried and the best kept; a sub-mesh's result is kept only
-// when it has fewer inverted hexes (or as many and a better worst one), so the mesh never gets
-// worse.
+// when it has fewer inverted hexes (or as many and a better worst one), so the inverted count
+// never rises.
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <stdexcept>
 #include <vector>
 
 #include "stcweave/primal/position.hpp"
@@ -79,34 +80,41 @@ std::vector<std::vector<std::size_t>> clusters_of(
   return out;
 }
 
-/// `cluster` grown by `rings` layers of hexes sharing a node, sorted.
-std::vector<std::size_t> grown(const std::vector<std::size_t>& cluster, int rings,
-                               const std::vector<stc::Hex>& hexes,
-                               const std::vector<std::vector<std::size_t>>& node_hexes) {
-  std::vector<char> in(hexes.size(), 0);
+/// `cluster` grown by 0, 1, ... `rings` layers of hexes sharing a node: entry r lists the
+/// hexes within r layers, sorted. `mark` (one entry per hex, all 0) is left all 0.
+std::vector<std::vector<std::size_t>> grown(const std::vector<std::size_t>& cluster, int rings,
+                                            const std::vector<stc::Hex>& hexes,
+                                            const std::vector<std::vector<std::size_t>>& node_hexes,
+                                            std::vector<char>& mark) {
   std::vector<std::size_t> out = cluster;
-  for (const std::size_t h : out) in[h] = 1;
+  for (const std::size_t h : out) mark[h] = 1;
+  std::vector<std::vector<std::size_t>> layers;
+  layers.push_back(out);
   std::size_t layer_start = 0;
   for (int r = 0; r < rings; ++r) {
     const std::size_t layer_end = out.size();
     for (std::size_t k = layer_start; k < layer_end; ++k) {
       for (const NodeId v : hexes[out[k]]) {
         for (const std::size_t g : node_hexes[v.index()]) {
-          if (in[g] != 0) continue;
-          in[g] = 1;
+          if (mark[g] != 0) continue;
+          mark[g] = 1;
           out.push_back(g);
         }
       }
     }
     layer_start = layer_end;
+    layers.push_back(out);
+    std::sort(layers.back().begin(), layers.back().end());
   }
-  std::sort(out.begin(), out.end());
-  return out;
+  for (const std::size_t h : out) mark[h] = 0;
+  return layers;
 }
 
 /// The sub-mesh of `hexes` (ids into `mesh`) over its own node ids, with its fixed mask: the
-/// nodes fixed in `mesh` and the nodes on its boundary faces (faces of one sub-mesh hex), so
-/// that every node it may move has all its hexes inside it.
+/// nodes fixed in `mesh`, the nodes on its boundary faces (faces of one sub-mesh hex) and any
+/// node with a hex outside it (the same nodes on a manifold complex; more where a face has
+/// three hexes or hex fans meet at a node), so that every node it may move has all its hexes
+/// inside it. Without `with_fixed`, only the nodes and hexes.
 struct SubMesh {
   HexMesh mesh;
   std::vector<bool> fixed;
@@ -114,7 +122,8 @@ struct SubMesh {
 };
 
 SubMesh sub_mesh(const HexMesh& mesh, const std::vector<bool>& fixed,
-                 const std::vector<std::size_t>& hexes) {
+                 const std::vector<std::vector<std::size_t>>& node_hexes,
+                 const std::vector<std::size_t>& hexes, bool with_fixed) {
   SubMesh s;
   std::map<std::int32_t, std::int32_t> local;
   for (const std::size_t h : hexes)
@@ -132,8 +141,15 @@ SubMesh sub_mesh(const HexMesh& mesh, const std::vector<bool>& fixed,
     for (NodeId& v : x) v = NodeId(local.at(v.value()));
     s.mesh.complex.hexes.push_back(x);
   }
+  if (!with_fixed) return s;
   s.fixed.assign(s.node_of.size(), false);
-  for (std::size_t v = 0; v < s.node_of.size(); ++v) s.fixed[v] = fixed[s.node_of[v].index()];
+  std::vector<std::size_t> inside(s.node_of.size(), 0);
+  for (const stc::Hex& x : s.mesh.complex.hexes)
+    for (const NodeId v : x) ++inside[v.index()];
+  for (std::size_t v = 0; v < s.node_of.size(); ++v) {
+    s.fixed[v] =
+        fixed[s.node_of[v].index()] || inside[v] != node_hexes[s.node_of[v].index()].size();
+  }
   std::map<std::array<std::int32_t, 4>, int> faces;
   for (const stc::Hex& x : s.mesh.complex.hexes) {
     for (const auto& f : stc::kHexFaces) {
@@ -196,24 +212,28 @@ ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
   sub_options.certify_depth = 0;
   sub_options.num_fixed = 0;
   sub_options.progress = nullptr;
-  sub_options.good_start = 2.0;  // a sub-mesh always has an inverted hex: never "good"
+  sub_options.good_start = 2.0;  // never kept as a "good start": always untangled
   report.stop = "pass limit";
+  const auto spent = [&]() {
+    return options.cluster_max_work > 0 && report.work >= options.cluster_max_work;
+  };
+  std::vector<char> mark(hexes.size(), 0);
   bool work_bound = false;
-  for (int pass = 0; pass < options.cluster_passes && !work_bound; ++pass) {
+  for (int pass = 0; pass < options.cluster_passes; ++pass) {
+    if (spent()) {
+      work_bound = true;
+      break;
+    }
     ++report.passes;
     const std::size_t at_pass_start = inverted.size();
     std::size_t inverted_now = at_pass_start;
     const std::vector<std::vector<std::size_t>> clusters = clusters_of(inverted, hexes, node_hexes);
     for (std::size_t c = 0; c < clusters.size() && !work_bound; ++c) {
-      ++report.clusters;
       // The sub-meshes tried for this cluster lie inside the widest one: each is judged by
       // the hexes of that one (all the hexes any of them can change), and the best kept.
-      const std::vector<std::size_t> widest_hexes =
-          grown(clusters[c], options.cluster_max_rings, hexes, node_hexes);
-      SubMesh wide = sub_mesh(mesh, fixed, widest_hexes);
-      std::map<std::int32_t, std::size_t> wide_local;
-      for (std::size_t v = 0; v < wide.node_of.size(); ++v)
-        wide_local.emplace(wide.node_of[v].value(), v);
+      const std::vector<std::vector<std::size_t>> layers =
+          grown(clusters[c], options.cluster_max_rings, hexes, node_hexes, mark);
+      SubMesh wide = sub_mesh(mesh, fixed, node_hexes, layers.back(), false);
       const std::vector<std::size_t> all_wide = [&]() {
         std::vector<std::size_t> ids(wide.mesh.complex.hexes.size());
         for (std::size_t k = 0; k < ids.size(); ++k) ids[k] = k;
@@ -221,21 +241,37 @@ ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
       }();
       const Tally at_start = tally(wide.mesh.points, wide.mesh.complex.hexes, all_wide);
       if (at_start.inverted == 0) continue;  // an earlier cluster's sub-mesh untangled it
+      ++report.clusters;
+      std::map<std::int32_t, std::size_t> wide_local;
+      for (std::size_t v = 0; v < wide.node_of.size(); ++v)
+        wide_local.emplace(wide.node_of[v].value(), v);
       Tally best = at_start;
       Points best_points;
       // In order, and no further once a sub-mesh leaves none of them inverted.
       for (int rings = 1; rings <= options.cluster_max_rings && best.inverted > 0 && !work_bound;
            ++rings) {
-        const std::vector<std::size_t> hexes_in = grown(clusters[c], rings, hexes, node_hexes);
+        const std::vector<std::size_t>& hexes_in = layers[static_cast<std::size_t>(rings)];
         if (hexes_in.size() > options.cluster_max_hexes) break;
+        const SubMesh base = sub_mesh(mesh, fixed, node_hexes, hexes_in, true);
         for (const StartPosition start : {StartPosition::Keep, StartPosition::Harmonic}) {
           if (best.inverted == 0) break;
-          SubMesh sub = sub_mesh(mesh, fixed, hexes_in);
-          sub_options.fixed = sub.fixed;
-          sub_options.start = start;
-          if (options.cluster_max_work > 0 && report.work >= options.cluster_max_work) {
+          if (spent()) {
             work_bound = true;
             break;
+          }
+          SubMesh sub = base;
+          sub_options.fixed = sub.fixed;
+          sub_options.start = start;
+          if (options.cluster_max_work > 0) {
+            // No sub-mesh's untangling passes what is left of the bound.
+            const std::size_t left = (options.cluster_max_work - report.work) /
+                                     std::max<std::size_t>(1, hexes_in.size());
+            const auto cap = static_cast<int>(
+                std::min<std::size_t>(std::max<std::size_t>(1, left),
+                                      static_cast<std::size_t>(std::numeric_limits<int>::max())));
+            sub_options.max_total_iterations = options.max_total_iterations > 0
+                                                   ? std::min(options.max_total_iterations, cap)
+                                                   : cap;
           }
           ++report.sub_problems;
           try {
@@ -245,6 +281,8 @@ ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
             continue;  // a sub-mesh whose total volume is not positive: too tangled here
           } catch (const SolverError&) {
             continue;  // a harmonic start with a free node cut off from the fixed ones
+          } catch (const std::logic_error&) {
+            continue;  // LBFGSpp's line search on an ascent direction (plain L-BFGS)
           }
           Points trial = wide.mesh.points;
           for (std::size_t v = 0; v < sub.node_of.size(); ++v) {
@@ -278,17 +316,15 @@ ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
     report.inverted_after = inverted.size();
     if (inverted.empty()) {
       report.stop = "untangled";
-      break;
+      return report;
     }
-    if (work_bound) {
-      report.stop = "work bound";
-      break;
-    }
+    if (work_bound) break;
     if (inverted.size() >= at_pass_start) {
       report.stop = "settled";
-      break;
+      return report;
     }
   }
+  if (work_bound) report.stop = "work bound";
   return report;
 }
 

@@ -204,6 +204,9 @@ TEST(LocalUntangling, RefusesAMaskOfTheWrongSize) {
   EXPECT_THROW((void)untangle_clusters(mesh, std::vector<bool>(3, false), {}), InvalidInput);
 }
 
+// The same run twice gives the same positions. (These sub-meshes are below the 4,096 hexes
+// from which `position_nodes` evaluates with threads; that its results do not depend on the
+// thread count is `Position.ResultDoesNotDependOnTheThreadCount`.)
 TEST(LocalUntangling, IsDeterministic) {
   std::vector<bool> fixed;
   std::size_t moved = 0;

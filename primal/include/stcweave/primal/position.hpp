@@ -189,13 +189,16 @@ struct PositionOptions {
   /// Local untangling: sub-meshes with more hexes than this are not positioned.
   std::size_t cluster_max_hexes = 20000;
   /// Local untangling: no sub-mesh is started once the sub-meshes' work (their hexes times
-  /// their L-BFGS iterations, summed) has reached this (0: no bound). The default, about
+  /// their L-BFGS iterations, summed) has reached this, and none is given more L-BFGS
+  /// iterations than what is left of it allows (0: no bound). Per call of `position_nodes`
+  /// (the pipeline calls it twice when it compares a mesh with and without its pillow); the
+  /// repair sweeps inside the sub-meshes come on top. The default, about
   /// 100 s on the 2-core development machine, is 2.4 times what `gmsh-quad/cylinder2_c3`
   /// spends (4.2e7) and above `pmp/fandisk_quads` (3.1e7 and 3.9e7; docs/geometry.md "Local
   /// untangling").
   std::size_t cluster_max_work = 100000000;
-  /// Called after every untangling round and every repair or shape sweep when set (see
-  /// `PositionProgress`); the CLI's `--progress` prints it.
+  /// Called after every untangling round, every repair or shape sweep and every cluster of
+  /// the local untangling when set (see `PositionProgress`); the CLI's `--progress` prints it.
   std::function<void(const PositionProgress&)> progress;
 };
 
@@ -308,17 +311,20 @@ RepairReport repair_inverted(HexMesh& mesh, const std::vector<bool>& fixed,
 
 /// What `untangle_clusters` did.
 struct ClusterReport {
-  bool ran = false;              ///< some hex was inverted and the pass was on
-  std::size_t passes = 0;        ///< passes over the clusters
-  std::size_t clusters = 0;      ///< clusters worked on, over every pass
-  std::size_t sub_problems = 0;  ///< sub-meshes positioned
-  std::size_t accepted = 0;      ///< clusters whose best sub-mesh was kept
+  bool ran = false;          ///< some hex was inverted and the pass was on
+  std::size_t passes = 0;    ///< passes over the clusters
+  std::size_t clusters = 0;  ///< clusters worked on (still inverted), over every pass
+  /// Sub-meshes handed to `position_nodes` (those it refused, e.g. with a negative total
+  /// volume, included).
+  std::size_t sub_problems = 0;
+  std::size_t accepted = 0;  ///< clusters whose best sub-mesh was kept
   /// The sub-meshes' hexes times their L-BFGS iterations, summed (`cluster_max_work`).
   std::size_t work = 0;
   std::size_t inverted_before = 0;
   std::size_t inverted_after = 0;
   /// "untangled" (no hex inverted), "settled" (a pass lowered nothing), "pass limit",
-  /// "work bound" (`cluster_max_work`), "nothing inverted", "off".
+  /// "work bound" (`cluster_max_work`), "nothing inverted", "no free node" (in
+  /// `position_nodes`'s report), "off".
   std::string stop;
 };
 /// Local untangling of the hexes the untangling and the repair left inverted: the inverted
@@ -326,9 +332,10 @@ struct ClusterReport {
 /// `cluster_max_rings` rings is positioned on its own by `position_nodes`, its boundary nodes
 /// held, from the current positions and from the harmonic ones (without the shape phase).
 /// The best of those (fewest inverted hexes, then the largest worst scaled Jacobian, judged
-/// over the widest sub-mesh) is kept when it beats the current positions, so no hex gets
-/// worse than the worst one there and the inverted count never rises. Up to
-/// `cluster_passes` passes, while a pass lowers the count. Deterministic.
+/// over the widest sub-mesh) is kept when it beats the current positions, so the inverted
+/// count never rises and, at an equal count, the worst hex there never drops. `options` as
+/// `position_nodes` takes them (it checks them; an invalid one makes every sub-mesh fail).
+/// Up to `cluster_passes` passes, while a pass lowers the count. Deterministic.
 /// docs/geometry.md "Local untangling" has the measurements.
 /// \pre `fixed.size() == mesh.points.rows()` (checked: InvalidInput).
 ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
