@@ -4,6 +4,7 @@
 /// shape phase and barrier pass both walk them).
 
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include "stcweave/stc/hex_complex.hpp"
@@ -15,6 +16,11 @@ namespace stcweave::primal {
 struct NodeHexes {
   std::vector<std::size_t> start;   ///< num_nodes + 1 row offsets
   std::vector<std::size_t> around;  ///< hex indices, one entry per hex corner
+
+  /// The hexes around node `v`.
+  [[nodiscard]] std::span<const std::size_t> of(std::size_t v) const {
+    return {around.data() + start[v], start[v + 1] - start[v]};
+  }
 };
 
 /// The rows of `hexes` over `num_nodes` nodes (every node id below `num_nodes`).

@@ -13,7 +13,6 @@
 // never rises.
 #include <Eigen/Core>
 #include <algorithm>
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -21,9 +20,11 @@
 #include <stdexcept>
 #include <vector>
 
+#include "node_hexes.hpp"
 #include "stcweave/primal/position.hpp"
 #include "stcweave/primal/quality.hpp"
 #include "stcweave/stc/errors.hpp"
+#include "stcweave/stc/hex_complex.hpp"
 #include "stcweave/stc/quad_surface.hpp"
 
 namespace stcweave::primal {
@@ -54,9 +55,9 @@ bool better(const Tally& a, const Tally& b) {
 
 /// The clusters of `inverted` (sorted hex ids): components under "shares a node", each listed
 /// in increasing hex order, ordered by their smallest hex.
-std::vector<std::vector<std::size_t>> clusters_of(
-    const std::vector<std::size_t>& inverted, const std::vector<stc::Hex>& hexes,
-    const std::vector<std::vector<std::size_t>>& node_hexes) {
+std::vector<std::vector<std::size_t>> clusters_of(const std::vector<std::size_t>& inverted,
+                                                  const std::vector<stc::Hex>& hexes,
+                                                  const NodeHexes& node_hexes) {
   std::vector<char> is_inverted(hexes.size(), 0);
   for (const std::size_t h : inverted) is_inverted[h] = 1;
   std::vector<char> seen(hexes.size(), 0);
@@ -67,7 +68,7 @@ std::vector<std::vector<std::size_t>> clusters_of(
     std::vector<std::size_t> cluster{s};
     for (std::size_t k = 0; k < cluster.size(); ++k) {
       for (const NodeId v : hexes[cluster[k]]) {
-        for (const std::size_t g : node_hexes[v.index()]) {
+        for (const std::size_t g : node_hexes.of(v.index())) {
           if (is_inverted[g] == 0 || seen[g] != 0) continue;
           seen[g] = 1;
           cluster.push_back(g);
@@ -84,8 +85,7 @@ std::vector<std::vector<std::size_t>> clusters_of(
 /// hexes within r layers, sorted. `mark` (one entry per hex, all 0) is left all 0.
 std::vector<std::vector<std::size_t>> grown(const std::vector<std::size_t>& cluster, int rings,
                                             const std::vector<stc::Hex>& hexes,
-                                            const std::vector<std::vector<std::size_t>>& node_hexes,
-                                            std::vector<char>& mark) {
+                                            const NodeHexes& node_hexes, std::vector<char>& mark) {
   std::vector<std::size_t> out = cluster;
   for (const std::size_t h : out) mark[h] = 1;
   std::vector<std::vector<std::size_t>> layers;
@@ -95,7 +95,7 @@ std::vector<std::vector<std::size_t>> grown(const std::vector<std::size_t>& clus
     const std::size_t layer_end = out.size();
     for (std::size_t k = layer_start; k < layer_end; ++k) {
       for (const NodeId v : hexes[out[k]]) {
-        for (const std::size_t g : node_hexes[v.index()]) {
+        for (const std::size_t g : node_hexes.of(v.index())) {
           if (mark[g] != 0) continue;
           mark[g] = 1;
           out.push_back(g);
@@ -121,8 +121,7 @@ struct SubMesh {
   std::vector<NodeId> node_of;  ///< per local node, the node of the whole mesh
 };
 
-SubMesh sub_mesh(const HexMesh& mesh, const std::vector<bool>& fixed,
-                 const std::vector<std::vector<std::size_t>>& node_hexes,
+SubMesh sub_mesh(const HexMesh& mesh, const std::vector<bool>& fixed, const NodeHexes& node_hexes,
                  const std::vector<std::size_t>& hexes, bool with_fixed) {
   SubMesh s;
   std::map<std::int32_t, std::int32_t> local;
@@ -148,20 +147,10 @@ SubMesh sub_mesh(const HexMesh& mesh, const std::vector<bool>& fixed,
     for (const NodeId v : x) ++inside[v.index()];
   for (std::size_t v = 0; v < s.node_of.size(); ++v) {
     s.fixed[v] =
-        fixed[s.node_of[v].index()] || inside[v] != node_hexes[s.node_of[v].index()].size();
+        fixed[s.node_of[v].index()] || inside[v] != node_hexes.of(s.node_of[v].index()).size();
   }
-  std::map<std::array<std::int32_t, 4>, int> faces;
-  for (const stc::Hex& x : s.mesh.complex.hexes) {
-    for (const auto& f : stc::kHexFaces) {
-      std::array<std::int32_t, 4> key{};
-      for (std::size_t k = 0; k < 4; ++k) key[k] = x[static_cast<std::size_t>(f[k])].value();
-      std::sort(key.begin(), key.end());
-      ++faces[key];
-    }
-  }
-  for (const auto& [key, count] : faces)
-    if (count == 1)
-      for (const std::int32_t v : key) s.fixed[static_cast<std::size_t>(v)] = true;
+  for (const stc::Quad& q : stc::boundary_surface(s.mesh.complex).quads)
+    for (const NodeId v : q) s.fixed[v.index()] = true;
   return s;
 }
 
@@ -176,16 +165,15 @@ ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
     throw InvalidInput("untangle_clusters: the fixed mask has " + std::to_string(fixed.size()) +
                        " entries for " + std::to_string(num_nodes) + " nodes");
   }
-  std::vector<std::vector<std::size_t>> node_hexes(num_nodes);
   for (std::size_t h = 0; h < hexes.size(); ++h) {
     for (const NodeId v : hexes[h]) {
       if (!v.is_valid() || v.index() >= num_nodes) {
         throw InvalidInput("untangle_clusters: hex h" + std::to_string(h) + " names node " +
                            v.str() + " out of range (" + std::to_string(num_nodes) + " nodes)");
       }
-      node_hexes[v.index()].push_back(h);
     }
   }
+  const NodeHexes node_hexes = primal::node_hexes(hexes, num_nodes);
   const auto inverted_hexes = [&]() {
     std::vector<std::size_t> out;
     for (std::size_t h = 0; h < hexes.size(); ++h)
