@@ -204,6 +204,18 @@ TEST(LocalUntangling, RefusesAMaskOfTheWrongSize) {
   EXPECT_THROW((void)untangle_clusters(mesh, std::vector<bool>(3, false), {}), InvalidInput);
 }
 
+TEST(LocalUntangling, RefusesAHexNamingANodeOutOfRange) {
+  HexMesh mesh = test::box_hexes(2, 2, 2);
+  const std::vector<bool> fixed(static_cast<std::size_t>(mesh.points.rows()), false);
+  mesh.complex.hexes[1][5] = NodeId(static_cast<std::int32_t>(mesh.points.rows()));
+  try {
+    (void)untangle_clusters(mesh, fixed, {});
+    FAIL() << "no InvalidInput";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("hex h1 names node"), std::string::npos) << e.what();
+  }
+}
+
 // The same run twice gives the same positions. (These sub-meshes are below the 4,096 hexes
 // from which `position_nodes` evaluates with threads; that its results do not depend on the
 // thread count is `Position.ResultDoesNotDependOnTheThreadCount`.)
