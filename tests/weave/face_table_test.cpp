@@ -165,6 +165,15 @@ OneFloodCount expect_one_flood_exact(const stc::QuadSurface& surface, std::size_
     const FrontLoops loops = front_loops(front);
     const FrontComponents comps = front_components(front, nodes);
     const FaceTable table = face_table(front);
+    {
+      // The loops and components read from the table are the front's own, numbered alike.
+      const FrontLoops from_table = front_loops(front, table);
+      EXPECT_EQ(from_table.strips, loops.strips) << what << ", step " << step;
+      EXPECT_EQ(from_table.loop_of, loops.loop_of) << what << ", step " << step;
+      const FrontComponents comps_from_table = front_components(front, table, nodes);
+      EXPECT_EQ(comps_from_table.component_of, comps.component_of) << what << ", step " << step;
+      EXPECT_EQ(comps_from_table.size, comps.size) << what << ", step " << step;
+    }
     ComponentTotals totals = component_totals(front, table, comps, par.flat);
     cache.begin(front, table);
     const std::vector<TraceCandidate> all =

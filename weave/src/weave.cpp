@@ -31,12 +31,14 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "driver.hpp"
 #include "recovery.hpp"
 #include "select/bounded.hpp"
 #include "select/candidates.hpp"
+#include "select/face_table.hpp"
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/weave/front_pillow.hpp"
 #include "stcweave/weave/kernel.hpp"
@@ -210,8 +212,14 @@ std::optional<std::string> weave_front(WeaveState& state, WeaveContext& ctx,
       break;
 
     // "Compute the loop properties to get S": two candidates per loop, side A and side B.
-    const FrontLoops loops = front_loops(state.front);
-    const FrontComponents components = front_components(state.front, ctx.nodes);
+    // The lazy geometric selection builds the front's face table once and reads the loops and
+    // components from it too (select/face_table.hpp): lookups instead of incidence scans.
+    const bool lazy_selection = bounded && selection.geometric;
+    std::optional<FaceTable> table;
+    if (lazy_selection) table.emplace(face_table(state.front, true));
+    const FrontLoops loops = table ? front_loops(state.front, *table) : front_loops(state.front);
+    const FrontComponents components = table ? front_components(state.front, *table, ctx.nodes)
+                                             : front_components(state.front, ctx.nodes);
     const auto all_candidates = [&] {
       return loop_candidates(state.front, loops, components, selection.geometric, par, ctx.nodes,
                              ctx.faces, ctx.faces2);
@@ -220,9 +228,9 @@ std::optional<std::string> weave_front(WeaveState& state, WeaveContext& ctx,
     // side properties only of the candidates a filter reads them of (select/candidates.hpp).
     std::optional<CandidateSet> lazy;
     std::vector<TraceCandidate> candidates;
-    if (bounded && selection.geometric) {
+    if (lazy_selection) {
       lazy.emplace(state.front, loops, components, par, ctx.nodes, ctx.faces, ctx.faces2,
-                   options.check);
+                   options.check, std::move(*table));
       if (extended && par.parallel_merging) {
         for (std::size_t i = 0; i + 1 < lazy->all().size(); i += 2)
           if (may_merge_in_parallel(lazy->all()[i], lazy->all()[i + 1]))

@@ -2,44 +2,18 @@
 /// side, until the loop returns. The front changes at every rule, so a loop being shrunk is
 /// kept as its transversal edges and re-found from them (`retrace`).
 
-#include "stcweave/stc/errors.hpp"
+#include "front_walks.hpp"
 #include "stcweave/weave/rules.hpp"
 
 namespace stcweave::weave {
 
 Strip trace_strip(const Front& front, FaceIndex f, int entry) {
-  Strip out;
-  const stc::StripStep start{QuadId(f), entry};
-  stc::StripStep cur = start;
-  const std::size_t limit = 2 * front.num_faces() + 4;
-  do {
-    out.push_back(cur);
-    const FaceSide next = front.across(face_of(cur), cur.exit());
-    if (next.face == kNoFace) throw InternalError("weave: open front edge while tracing a loop");
-    cur = stc::StripStep{QuadId(next.face), next.index};
-    if (out.size() > limit) throw InternalError("weave: runaway loop trace");
-  } while (cur != start);
-  return out;
+  return detail::trace_strip_with(front, f, entry,
+                                  [&](FaceIndex g, int k) { return front.across(g, k); });
 }
 
 FrontLoops front_loops(const Front& front) {
-  FrontLoops out;
-  out.loop_of.assign(front.face_capacity(), {-1, -1});
-  for (std::size_t fi = 0; fi < front.face_capacity(); ++fi) {
-    const auto f = static_cast<FaceIndex>(fi);
-    if (!front.is_alive(f)) continue;
-    for (int dir = 0; dir < 2; ++dir) {
-      if (out.loop_of[fi][static_cast<std::size_t>(dir)] >= 0) continue;
-      Strip loop = trace_strip(front, f, dir);
-      const auto id = static_cast<std::int32_t>(out.strips.size());
-      for (const stc::StripStep& p : loop) {
-        out.loop_of[static_cast<std::size_t>(face_of(p))][static_cast<std::size_t>(p.direction())] =
-            id;
-      }
-      out.strips.push_back(std::move(loop));
-    }
-  }
-  return out;
+  return detail::front_loops_with(front, [&](FaceIndex g, int k) { return front.across(g, k); });
 }
 
 std::vector<Transversal> transversals(const Front& front, const Strip& strip, stc::LoopSide side) {

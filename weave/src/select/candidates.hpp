@@ -18,11 +18,14 @@
 /// (no observer) and ranks every candidate again, on the same front, when the first fails to
 /// shrink (as with the reliable branch and bound, select/bounded.hpp).
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "face_table.hpp"
 #include "one_flood.hpp"
+#include "side_faces.hpp"
 #include "stcweave/weave/select.hpp"
 
 namespace stcweave::weave {
@@ -38,6 +41,11 @@ class CandidateSet {
   CandidateSet(const Front& front, const FrontLoops& loops, const FrontComponents& components,
                const ExtendedParameters& parameters, Marks& nodes, Marks& faces, Marks& faces2,
                bool check = false);
+  /// The same with the front's `face_table(front, true)` built by the caller (who read its
+  /// loops and components from it too: `front_loops(front, table)`).
+  CandidateSet(const Front& front, const FrontLoops& loops, const FrontComponents& components,
+               const ExtendedParameters& parameters, Marks& nodes, Marks& faces, Marks& faces2,
+               bool check, FaceTable table);
 
   [[nodiscard]] std::vector<TraceCandidate>& all() { return all_; }
   /// The `side_property` bits known for both candidates of `loop`.
@@ -52,9 +60,11 @@ class CandidateSet {
   /// the candidates of `set` (indices into `all()`) complete where they may be first, and
   /// gives every other one a `faces_collapsed` that is a lower bound of its own and above the
   /// least of the set, so that ordering `set` puts first the candidate `complete_all` would.
-  /// The sides are flooded only up to a limit (`faces_collapsed_at_least`) that starts at
-  /// the least faces collapsed of the previous such call (a hint: it changes the work only)
-  /// and doubles until some candidate of the set is within it.
+  /// The sides are bounded up to a limit that starts at the least faces collapsed of the
+  /// previous such call (a hint: it changes the work only) and doubles until some candidate
+  /// of the set is within it; a side's bound is read from the exact counts of every loop
+  /// (`side_faces`, computed once for the set) where they are known, and flooded up to the
+  /// limit (`faces_collapsed_at_least`) where not.
   void bound_faces(const std::vector<std::size_t>& set);
 
  private:
@@ -73,6 +83,14 @@ class CandidateSet {
   /// Per loop: `nonconvex_on_side` is known from the side parities (select/side_parity.hpp),
   /// as 0 or 1 ("at least one"), until the loop is completed.
   std::vector<char> by_parity_;
+  /// Faces collapsed of both sides of every loop, where known (`side_faces`): computed by the
+  /// first `bound_faces` of the selection.
+  std::optional<SideFaces> side_faces_;
+
+  /// What `faces_collapsed_at_least` gives for the `sides` of `loop` up to `limit`, from
+  /// `side_faces_` where known (checked against the flood with `check_`).
+  [[nodiscard]] std::array<std::size_t, 2> faces_collapsed_bound(std::int32_t loop, unsigned sides,
+                                                                 std::size_t limit);
 };
 
 /// `rank(selection, ...)`'s first candidate, its reason and its filters, computing side

@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "../rules/front_walks.hpp"
+
 namespace stcweave::weave {
 
 FaceTable face_table(const Front& front, bool angles) {
@@ -54,6 +56,16 @@ FaceTable face_table(const Front& front, bool angles) {
     }
   }
   return t;
+}
+
+FrontLoops front_loops(const Front& front, const FaceTable& table) {
+  return detail::front_loops_with(front, [&](FaceIndex f, int k) { return table.across_of(f, k); });
+}
+
+FrontComponents front_components(const Front& front, const FaceTable& table, Marks& marks) {
+  return detail::front_components_with(
+      front, marks, [&](NodeId v) { return table.faces_at(v); },
+      [&](FaceIndex f) -> const stc::Quad& { return table.nodes_of(f); });
 }
 
 }  // namespace stcweave::weave

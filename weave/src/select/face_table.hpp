@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "stcweave/weave/front.hpp"
+#include "stcweave/weave/rules.hpp"
 
 namespace stcweave::weave {
 
@@ -49,5 +50,13 @@ struct FaceTable {
 /// The tables of `front` as it is now; without `angles`, `across` and `angle` stay empty (the
 /// reliable weights read only the incidence lists and face nodes).
 [[nodiscard]] FaceTable face_table(const Front& front, bool angles = true);
+
+/// `front_loops(front)` read from `table` (built with angles, so with `across`): the same
+/// loops in the same order, each step found by lookup instead of a scan of a node's faces.
+[[nodiscard]] FrontLoops front_loops(const Front& front, const FaceTable& table);
+
+/// `front_components(front, marks)` read from `table`: the same components.
+[[nodiscard]] FrontComponents front_components(const Front& front, const FaceTable& table,
+                                               Marks& marks);
 
 }  // namespace stcweave::weave

@@ -13,6 +13,7 @@
 #include <span>
 #include <utility>
 
+#include "../rules/front_walks.hpp"
 #include "bounded.hpp"
 #include "candidates.hpp"
 #include "face_table.hpp"
@@ -23,51 +24,9 @@
 
 namespace stcweave::weave {
 FrontComponents front_components(const Front& front, Marks& marks) {
-  FrontComponents out;
-  out.component_of.assign(front.num_nodes(), 0);
-  const std::uint32_t mark = marks.fresh(front.num_nodes());
-  // From the live faces, not from every node ever made (the front is a small part of them
-  // late in a weave); the components are then numbered by their smallest node, as a scan of
-  // the nodes in order numbers them.
-  std::vector<NodeId> stack;
-  std::vector<std::pair<std::size_t, std::size_t>> found;  // per component: smallest node, size
-  std::vector<std::pair<NodeId, std::size_t>> members;     // node, component found
-  for (std::size_t fi = 0; fi < front.face_capacity(); ++fi) {
-    const auto f = static_cast<FaceIndex>(fi);
-    if (!front.is_alive(f)) continue;
-    const NodeId start = front.face(f).nodes[0];
-    if (marks.is(start.index(), mark)) continue;
-    const std::size_t comp = found.size();
-    found.emplace_back(start.index(), 0);
-    marks.set(start.index(), mark);
-    stack.push_back(start);
-    while (!stack.empty()) {
-      const NodeId n = stack.back();
-      stack.pop_back();
-      members.emplace_back(n, comp);
-      found[comp].first = std::min(found[comp].first, n.index());
-      ++found[comp].second;
-      for (FaceIndex g : front.faces_at(n)) {
-        for (NodeId m : front.face(g).nodes) {
-          if (marks.is(m.index(), mark)) continue;
-          marks.set(m.index(), mark);
-          stack.push_back(m);
-        }
-      }
-    }
-  }
-  std::vector<std::size_t> order(found.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return found[a].first < found[b].first; });
-  std::vector<std::size_t> id(found.size());
-  out.size.resize(found.size());
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    id[order[k]] = k;
-    out.size[k] = found[order[k]].second;
-  }
-  for (const auto& [n, comp] : members) out.component_of[n.index()] = id[comp];
-  return out;
+  return detail::front_components_with(
+      front, marks, [&](NodeId v) -> const auto& { return front.faces_at(v); },
+      [&](FaceIndex f) -> const stc::Quad& { return front.face(f).nodes; });
 }
 
 namespace {
@@ -795,6 +754,12 @@ thread_local std::size_t fewest_faces_hint = 0;
 CandidateSet::CandidateSet(const Front& front, const FrontLoops& loops,
                            const FrontComponents& components, const ExtendedParameters& parameters,
                            Marks& nodes, Marks& faces, Marks& faces2, bool check)
+    : CandidateSet(front, loops, components, parameters, nodes, faces, faces2, check,
+                   face_table(front, true)) {}
+
+CandidateSet::CandidateSet(const Front& front, const FrontLoops& loops,
+                           const FrontComponents& components, const ExtendedParameters& parameters,
+                           Marks& nodes, Marks& faces, Marks& faces2, bool check, FaceTable table)
     : front_(front),
       loops_(loops),
       components_(components),
@@ -803,7 +768,7 @@ CandidateSet::CandidateSet(const Front& front, const FrontLoops& loops,
       faces_(faces),
       faces2_(faces2),
       check_(check),
-      table_(face_table(front, true)),
+      table_(std::move(table)),
       totals_(component_totals(front, table_, components, parameters.flat)) {
   side_cache.begin(front, table_);
   const std::size_t n = loops.strips.size();
@@ -931,8 +896,7 @@ void CandidateSet::bound_faces(const std::vector<std::size_t>& set) {
     for (const std::int32_t loop : rest) {
       const auto l = static_cast<std::size_t>(loop);
       const std::size_t limit = std::min(cap, best);
-      const std::array<std::size_t, 2> at_least = faces_collapsed_at_least(
-          front_, table_, loops_.strips[l], wanted[l], limit, nodes_, faces_, faces2_);
+      const std::array<std::size_t, 2> at_least = faces_collapsed_bound(loop, wanted[l], limit);
       bool within = false;
       for (std::size_t d = 0; d < 2; ++d)
         if ((wanted[l] & (1U << d)) != 0U && at_least[d] <= limit) within = true;
@@ -950,6 +914,40 @@ void CandidateSet::bound_faces(const std::vector<std::size_t>& set) {
     cap = cap > kNoLimit / 2 ? kNoLimit : 2 * cap;
   }
   if (best != kNoLimit) fewest_faces_hint = best;
+}
+
+std::array<std::size_t, 2> CandidateSet::faces_collapsed_bound(std::int32_t loop, unsigned sides,
+                                                               std::size_t limit) {
+  const auto l = static_cast<std::size_t>(loop);
+  const Strip& strip = loops_.strips[l];
+  if (!side_faces_) {
+    std::vector<char> crosses_itself(loops_.strips.size(), 0);
+    for (std::size_t k = 0; k < crosses_itself.size(); ++k)
+      crosses_itself[k] = all_[2 * k].self_intersecting ? 1 : 0;
+    side_faces_ = side_faces(front_, table_, loops_, components_, totals_.faces, crosses_itself);
+  }
+  if (side_faces_->known[l] == 0)
+    return faces_collapsed_at_least(front_, table_, strip, sides, limit, nodes_, faces_, faces2_);
+  // The flood's answer: the exact count when it is within the limit, else one above it.
+  std::array<std::size_t, 2> out{0, 0};
+  const std::size_t above = limit == kNoLimit ? kNoLimit : limit + 1;
+  for (std::size_t d = 0; d < 2; ++d) {
+    if ((sides & (1U << d)) == 0U) continue;
+    const std::size_t exact = side_faces_->faces_collapsed[l][d];
+    out[d] = exact <= limit ? exact : above;
+  }
+  if (check_) {
+    const std::array<std::size_t, 2> flooded =
+        faces_collapsed_at_least(front_, table_, strip, sides, limit, nodes_, faces_, faces2_);
+    if (flooded != out) {
+      throw InternalError("weave: loop " + std::to_string(loop) +
+                          ": the faces collapsed of its sides counted over the front's tree (" +
+                          std::to_string(out[0]) + ", " + std::to_string(out[1]) +
+                          ") differ from its floods' (" + std::to_string(flooded[0]) + ", " +
+                          std::to_string(flooded[1]) + ")");
+    }
+  }
+  return out;
 }
 
 void CandidateSet::complete_all() {
