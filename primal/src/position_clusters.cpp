@@ -15,9 +15,13 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <limits>
 #include <map>
+#include <optional>
 #include <stdexcept>
+#include <thread>
+#include <utility>
 #include <vector>
 
 #include "node_hexes.hpp"
@@ -121,6 +125,15 @@ struct SubMesh {
   std::vector<NodeId> node_of;  ///< per local node, the node of the whole mesh
 };
 
+/// One sub-mesh positioned from one start: its positions, and the L-BFGS iterations it used
+/// under its cap (`ok` false when the positioning refused the sub-mesh).
+struct Try {
+  SubMesh sub;
+  bool ok = false;
+  std::size_t iterations = 0;
+  int cap = 0;
+};
+
 SubMesh sub_mesh(const HexMesh& mesh, const std::vector<bool>& fixed, const NodeHexes& node_hexes,
                  const std::vector<std::size_t>& hexes, bool with_fixed) {
   SubMesh s;
@@ -201,6 +214,9 @@ ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
   sub_options.num_fixed = 0;
   sub_options.progress = nullptr;
   sub_options.good_start = 2.0;  // never kept as a "good start": always untangled
+  // The two starts of a sub-mesh run side by side when a second hardware thread is there and
+  // the caller did not ask for one thread; the result is the sequential order's either way.
+  const bool speculate = options.threads != 1 && std::thread::hardware_concurrency() > 1;
   report.stop = "pass limit";
   const auto spent = [&]() {
     return options.cluster_max_work > 0 && report.work >= options.cluster_max_work;
@@ -241,45 +257,86 @@ ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
         const std::vector<std::size_t>& hexes_in = layers[static_cast<std::size_t>(rings)];
         if (hexes_in.size() > options.cluster_max_hexes) break;
         const SubMesh base = sub_mesh(mesh, fixed, node_hexes, hexes_in, true);
+        // The iteration cap of a sub-mesh's untangling: what is left of the work bound.
+        const auto cap_now = [&]() -> int {
+          if (options.cluster_max_work == 0) return options.max_total_iterations;
+          const std::size_t left =
+              (options.cluster_max_work - report.work) / std::max<std::size_t>(1, hexes_in.size());
+          const auto cap = static_cast<int>(
+              std::min<std::size_t>(std::max<std::size_t>(1, left),
+                                    static_cast<std::size_t>(std::numeric_limits<int>::max())));
+          return options.max_total_iterations > 0 ? std::min(options.max_total_iterations, cap)
+                                                  : cap;
+        };
+        const auto run = [&](StartPosition start, int cap) {
+          Try t;
+          t.sub = base;
+          PositionOptions o = sub_options;
+          o.fixed = t.sub.fixed;
+          o.start = start;
+          o.max_total_iterations = cap;
+          t.cap = cap;
+          try {
+            t.iterations = position_nodes(t.sub.mesh, o).iterations;
+            t.ok = true;
+          } catch (const InvalidInput&) {
+            // a sub-mesh whose total volume is not positive: too tangled here
+          } catch (const SolverError&) {
+            // a harmonic start with a free node cut off from the fixed ones
+          } catch (const std::logic_error&) {
+            // LBFGSpp's line search on an ascent direction (plain L-BFGS)
+          }
+          return t;
+        };
+        // The harmonic start's try, run beside the first one (`speculate`): its cap is the one
+        // the first leaves it only when the first adds no work, so it is kept only when it
+        // stopped below the cap the sequential order gives it, and run again otherwise.
+        std::optional<Try> harmonic;
+        std::exception_ptr harmonic_error;
+        int harmonic_cap = 0;
         for (const StartPosition start : {StartPosition::Keep, StartPosition::Harmonic}) {
           if (best.inverted == 0) break;
           if (spent()) {
             work_bound = true;
             break;
           }
-          SubMesh sub = base;
-          sub_options.fixed = sub.fixed;
-          sub_options.start = start;
-          if (options.cluster_max_work > 0) {
-            // No sub-mesh's untangling passes what is left of the bound.
-            const std::size_t left = (options.cluster_max_work - report.work) /
-                                     std::max<std::size_t>(1, hexes_in.size());
-            const auto cap = static_cast<int>(
-                std::min<std::size_t>(std::max<std::size_t>(1, left),
-                                      static_cast<std::size_t>(std::numeric_limits<int>::max())));
-            sub_options.max_total_iterations = options.max_total_iterations > 0
-                                                   ? std::min(options.max_total_iterations, cap)
-                                                   : cap;
+          const int cap = cap_now();
+          std::thread beside;
+          if (start == StartPosition::Keep && speculate) {
+            harmonic_cap = cap;
+            beside = std::thread([&, cap] {
+              try {
+                harmonic = run(StartPosition::Harmonic, cap);
+              } catch (...) {
+                harmonic_error = std::current_exception();
+              }
+            });
           }
-          ++report.sub_problems;
+          Try t;
           try {
-            const PositionReport r = position_nodes(sub.mesh, sub_options);
-            report.work += sub.mesh.complex.hexes.size() * std::max<std::size_t>(1, r.iterations);
-          } catch (const InvalidInput&) {
-            continue;  // a sub-mesh whose total volume is not positive: too tangled here
-          } catch (const SolverError&) {
-            continue;  // a harmonic start with a free node cut off from the fixed ones
-          } catch (const std::logic_error&) {
-            continue;  // LBFGSpp's line search on an ascent direction (plain L-BFGS)
+            if (start == StartPosition::Harmonic && harmonic_error && harmonic_cap == cap)
+              std::rethrow_exception(harmonic_error);
+            t = start == StartPosition::Harmonic && harmonic &&
+                        (harmonic->cap == cap ||
+                         (harmonic->ok && harmonic->iterations < static_cast<std::size_t>(cap)))
+                    ? std::move(*harmonic)
+                    : run(start, cap);
+          } catch (...) {
+            if (beside.joinable()) beside.join();
+            throw;
           }
+          if (beside.joinable()) beside.join();
+          ++report.sub_problems;
+          if (!t.ok) continue;
+          report.work += t.sub.mesh.complex.hexes.size() * std::max<std::size_t>(1, t.iterations);
           Points trial = wide.mesh.points;
-          for (std::size_t v = 0; v < sub.node_of.size(); ++v) {
-            trial.row(static_cast<Eigen::Index>(wide_local.at(sub.node_of[v].value()))) =
-                sub.mesh.points.row(static_cast<Eigen::Index>(v));
+          for (std::size_t v = 0; v < t.sub.node_of.size(); ++v) {
+            trial.row(static_cast<Eigen::Index>(wide_local.at(t.sub.node_of[v].value()))) =
+                t.sub.mesh.points.row(static_cast<Eigen::Index>(v));
           }
-          const Tally t = tally(trial, wide.mesh.complex.hexes, all_wide);
-          if (better(t, best)) {
-            best = t;
+          const Tally tried = tally(trial, wide.mesh.complex.hexes, all_wide);
+          if (better(tried, best)) {
+            best = tried;
             best_points = std::move(trial);
           }
         }

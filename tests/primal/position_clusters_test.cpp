@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <iostream>
 #include <set>
 
 #include "position_helpers.hpp"
@@ -229,6 +230,74 @@ TEST(LocalUntangling, IsDeterministic) {
   (void)untangle_clusters(a, fixed, {});
   (void)untangle_clusters(b, fixed, one_thread);
   EXPECT_TRUE(a.points == b.points);
+}
+
+// With a second hardware thread the harmonic start's sub-mesh runs beside the first start's,
+// capped by what the work bound left before the pair, and is kept only when the sequential
+// order would have given it the same result (run again otherwise). Folds of several depths,
+// unbounded and with bounds that cut the sub-meshes, in both modes: the same positions and
+// the same report.
+TEST(LocalUntangling, TheTwoStartsSideBySideGiveTheSequentialResult) {
+  std::size_t compared = 0, harmonic_tried = 0;
+  for (const double shift : {1.6, 2.4, 3.4}) {
+    for (const std::size_t bound : {std::size_t{0}, std::size_t{150}, std::size_t{600},
+                                    std::size_t{4000}, std::size_t{30000}}) {
+      std::vector<bool> fixed;
+      std::size_t moved = 0;
+      HexMesh a = box_with_a_fold(&fixed, &moved, shift);
+      HexMesh b = a;
+      PositionOptions both;
+      both.cluster_max_work = bound;
+      PositionOptions one_thread = both;
+      one_thread.threads = 1;
+      const ClusterReport ra = untangle_clusters(a, fixed, both);
+      const ClusterReport rb = untangle_clusters(b, fixed, one_thread);
+      const std::string where =
+          "shift " + std::to_string(shift) + ", bound " + std::to_string(bound);
+      EXPECT_TRUE(a.points == b.points) << where;
+      EXPECT_EQ(ra.work, rb.work) << where;
+      EXPECT_EQ(ra.sub_problems, rb.sub_problems) << where;
+      EXPECT_EQ(ra.accepted, rb.accepted) << where;
+      EXPECT_EQ(ra.inverted_after, rb.inverted_after) << where;
+      EXPECT_EQ(ra.stop, rb.stop) << where;
+      ++compared;
+      std::cout << where << ": " << rb.sub_problems << " sub-meshes, " << rb.clusters
+                << " clusters, work " << rb.work << ", " << rb.inverted_after << " inverted, "
+                << rb.stop << "\n";
+      // More sub-meshes than clusters x rings: a harmonic start was tried somewhere.
+      if (rb.sub_problems > rb.clusters * 3) ++harmonic_tried;
+    }
+  }
+  // A fixed corner pushed through its hex: no position of the free nodes unfolds it, so every
+  // sub-mesh is tried, both starts, and the tight bounds cut them.
+  for (const std::size_t bound :
+       {std::size_t{0}, std::size_t{300}, std::size_t{1200}, std::size_t{5000}}) {
+    std::vector<bool> fixed;
+    std::size_t moved = 0;
+    HexMesh a = box_with_a_fold(&fixed, &moved, 0.0);
+    for (Eigen::Index v = 0; v < a.points.rows(); ++v) {
+      if (a.points.row(v).norm() < 1e-9) a.points.row(v) = Eigen::RowVector3d(1.6, 1.4, 1.5);
+    }
+    HexMesh b = a;
+    PositionOptions both;
+    both.cluster_max_work = bound;
+    PositionOptions one_thread = both;
+    one_thread.threads = 1;
+    const ClusterReport ra = untangle_clusters(a, fixed, both);
+    const ClusterReport rb = untangle_clusters(b, fixed, one_thread);
+    const std::string where = "pushed corner, bound " + std::to_string(bound);
+    EXPECT_TRUE(a.points == b.points) << where;
+    EXPECT_EQ(ra.work, rb.work) << where;
+    EXPECT_EQ(ra.sub_problems, rb.sub_problems) << where;
+    EXPECT_EQ(ra.stop, rb.stop) << where;
+    std::cout << where << ": " << rb.sub_problems << " sub-meshes, " << rb.clusters
+              << " clusters, work " << rb.work << ", " << rb.inverted_after << " inverted, "
+              << rb.stop << "\n";
+    ++compared;
+    if (rb.sub_problems > rb.clusters * 3) ++harmonic_tried;
+  }
+  EXPECT_EQ(compared, 19U);
+  EXPECT_GT(harmonic_tried, 0U) << "no harmonic start was tried: the test shows nothing";
 }
 
 }  // namespace
