@@ -334,8 +334,10 @@ class Problem {
   }
 
  private:
-  /// Below this many hexes one thread evaluates (thread start-up would dominate).
-  static constexpr std::size_t kParallelHexes = 4096;
+  /// Below this many hexes one thread evaluates (thread start-up would dominate). 1024 (was
+  /// 4096): measured faster on every mesh of 1,400 to 2,600 hexes tried (the positioning of
+  /// `pmp/fandisk_quads`, 2,501 hexes, 59 -> 51 s; docs/geometry.md), and the same results.
+  static constexpr std::size_t kParallelHexes = 1024;
 
   /// Energy (and gradient slots) of hexes first .. last-1.
   void evaluate_hexes(std::size_t first, std::size_t last, bool with_gradient) {

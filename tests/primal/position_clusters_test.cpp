@@ -217,7 +217,7 @@ TEST(LocalUntangling, RefusesAHexNamingANodeOutOfRange) {
   }
 }
 
-// The same run twice gives the same positions. (These sub-meshes are below the 4,096 hexes
+// The same run twice gives the same positions. (These sub-meshes are below the 1,024 hexes
 // from which `position_nodes` evaluates with threads; that its results do not depend on the
 // thread count is `Position.ResultDoesNotDependOnTheThreadCount`.)
 TEST(LocalUntangling, IsDeterministic) {

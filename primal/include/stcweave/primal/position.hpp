@@ -129,8 +129,9 @@ struct PositionOptions {
   int max_newton_steps = 50;
   /// Subdivision depth of the Bézier validity certification (0: no subdivision).
   int certify_depth = 4;
-  /// Threads evaluating the energy of meshes of 4096 hexes or more (0: one per hardware
-  /// thread). The result does not depend on it.
+  /// Threads evaluating the energy of meshes of 1024 hexes or more (0: one per hardware
+  /// thread), and running the two starts of a local untangling sub-mesh side by side (1: one
+  /// after the other). The result does not depend on it.
   int threads = 0;
   /// Early stop: a start with no inverted corner or hex, a minimum scaled Jacobian of at
   /// least this and a mean of at least `good_start_mean` is kept as it is (no untangling
