@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <iostream>
 #include <set>
+#include <string>
 
 #include "position_helpers.hpp"
 #include "stcweave/primal/position.hpp"
@@ -237,6 +238,31 @@ TEST(LocalUntangling, IsDeterministic) {
 // order would have given it the same result (run again otherwise). Folds of several depths,
 // unbounded and with bounds that cut the sub-meshes, in both modes: the same positions and
 // the same report.
+/// `untangle_clusters` on `mesh` with the two starts side by side and one after the other
+/// (`threads` 1), `bound` its work bound: the same positions and report. True when a harmonic
+/// start was tried (more sub-meshes than clusters times rings).
+bool same_both_ways(const HexMesh& mesh, const std::vector<bool>& fixed, std::size_t bound,
+                    const std::string& where) {
+  HexMesh a = mesh;
+  HexMesh b = mesh;
+  PositionOptions both;
+  both.cluster_max_work = bound;
+  PositionOptions one_thread = both;
+  one_thread.threads = 1;
+  const ClusterReport ra = untangle_clusters(a, fixed, both);
+  const ClusterReport rb = untangle_clusters(b, fixed, one_thread);
+  EXPECT_TRUE(a.points == b.points) << where;
+  EXPECT_EQ(ra.work, rb.work) << where;
+  EXPECT_EQ(ra.sub_problems, rb.sub_problems) << where;
+  EXPECT_EQ(ra.accepted, rb.accepted) << where;
+  EXPECT_EQ(ra.inverted_after, rb.inverted_after) << where;
+  EXPECT_EQ(ra.stop, rb.stop) << where;
+  std::cout << where << ": " << rb.sub_problems << " sub-meshes, " << rb.clusters
+            << " clusters, work " << rb.work << ", " << rb.inverted_after << " inverted, "
+            << rb.stop << "\n";
+  return rb.sub_problems > rb.clusters * 3;
+}
+
 TEST(LocalUntangling, TheTwoStartsSideBySideGiveTheSequentialResult) {
   std::size_t compared = 0, harmonic_tried = 0;
   for (const double shift : {1.6, 2.4, 3.4}) {
@@ -244,57 +270,27 @@ TEST(LocalUntangling, TheTwoStartsSideBySideGiveTheSequentialResult) {
                                     std::size_t{4000}, std::size_t{30000}}) {
       std::vector<bool> fixed;
       std::size_t moved = 0;
-      HexMesh a = box_with_a_fold(&fixed, &moved, shift);
-      HexMesh b = a;
-      PositionOptions both;
-      both.cluster_max_work = bound;
-      PositionOptions one_thread = both;
-      one_thread.threads = 1;
-      const ClusterReport ra = untangle_clusters(a, fixed, both);
-      const ClusterReport rb = untangle_clusters(b, fixed, one_thread);
-      const std::string where =
-          "shift " + std::to_string(shift) + ", bound " + std::to_string(bound);
-      EXPECT_TRUE(a.points == b.points) << where;
-      EXPECT_EQ(ra.work, rb.work) << where;
-      EXPECT_EQ(ra.sub_problems, rb.sub_problems) << where;
-      EXPECT_EQ(ra.accepted, rb.accepted) << where;
-      EXPECT_EQ(ra.inverted_after, rb.inverted_after) << where;
-      EXPECT_EQ(ra.stop, rb.stop) << where;
+      const HexMesh mesh = box_with_a_fold(&fixed, &moved, shift);
+      if (same_both_ways(mesh, fixed, bound,
+                         "shift " + std::to_string(shift) + ", bound " + std::to_string(bound)))
+        ++harmonic_tried;
       ++compared;
-      std::cout << where << ": " << rb.sub_problems << " sub-meshes, " << rb.clusters
-                << " clusters, work " << rb.work << ", " << rb.inverted_after << " inverted, "
-                << rb.stop << "\n";
-      // More sub-meshes than clusters x rings: a harmonic start was tried somewhere.
-      if (rb.sub_problems > rb.clusters * 3) ++harmonic_tried;
     }
   }
   // A fixed corner pushed through its hex: no position of the free nodes unfolds it, so every
-  // sub-mesh is tried, both starts, and the tight bounds cut them.
+  // sub-mesh is tried, both starts, and the tight bounds cut them (with 300 the harmonic
+  // start run beside the first is run again under the smaller cap the first one leaves).
   for (const std::size_t bound :
        {std::size_t{0}, std::size_t{300}, std::size_t{1200}, std::size_t{5000}}) {
     std::vector<bool> fixed;
     std::size_t moved = 0;
-    HexMesh a = box_with_a_fold(&fixed, &moved, 0.0);
-    for (Eigen::Index v = 0; v < a.points.rows(); ++v) {
-      if (a.points.row(v).norm() < 1e-9) a.points.row(v) = Eigen::RowVector3d(1.6, 1.4, 1.5);
+    HexMesh mesh = box_with_a_fold(&fixed, &moved, 0.0);
+    for (Eigen::Index v = 0; v < mesh.points.rows(); ++v) {
+      if (mesh.points.row(v).norm() < 1e-9) mesh.points.row(v) = Eigen::RowVector3d(1.6, 1.4, 1.5);
     }
-    HexMesh b = a;
-    PositionOptions both;
-    both.cluster_max_work = bound;
-    PositionOptions one_thread = both;
-    one_thread.threads = 1;
-    const ClusterReport ra = untangle_clusters(a, fixed, both);
-    const ClusterReport rb = untangle_clusters(b, fixed, one_thread);
-    const std::string where = "pushed corner, bound " + std::to_string(bound);
-    EXPECT_TRUE(a.points == b.points) << where;
-    EXPECT_EQ(ra.work, rb.work) << where;
-    EXPECT_EQ(ra.sub_problems, rb.sub_problems) << where;
-    EXPECT_EQ(ra.stop, rb.stop) << where;
-    std::cout << where << ": " << rb.sub_problems << " sub-meshes, " << rb.clusters
-              << " clusters, work " << rb.work << ", " << rb.inverted_after << " inverted, "
-              << rb.stop << "\n";
+    if (same_both_ways(mesh, fixed, bound, "pushed corner, bound " + std::to_string(bound)))
+      ++harmonic_tried;
     ++compared;
-    if (rb.sub_problems > rb.clusters * 3) ++harmonic_tried;
   }
   EXPECT_EQ(compared, 19U);
   EXPECT_GT(harmonic_tried, 0U) << "no harmonic start was tried: the test shows nothing";

@@ -5,6 +5,8 @@
 #include <span>
 #include <vector>
 
+#include "front_tree.hpp"
+
 namespace stcweave::weave {
 
 namespace {
@@ -86,48 +88,18 @@ SideFaces side_faces(const Front& front, const FaceTable& table, const FrontLoop
   // One depth-first tree per component: entry time, last entry time in the subtree (so v is
   // in u's subtree iff tin[u] <= tin[v] <= tout[u]), the faces given to the subtree's nodes,
   // and the loop crossing the tree edge into the node (-1 at a root).
-  struct Frame {
-    NodeId node;
-    std::size_t next = 0;  ///< 2 x incident face + which of the two edges at the node
-  };
-  std::vector<Frame> stack;
-  const auto enter = [&](NodeId v, std::int32_t l) {
-    tin[v.index()] = static_cast<std::uint32_t>(order.size());
-    entry_loop[v.index()] = l;
-    order.push_back(v);
-    stack.push_back({v, 0});
-  };
-  for (std::size_t i = 0; i < front.face_capacity(); ++i) {
-    const auto f = static_cast<FaceIndex>(i);
-    if (!front.is_alive(f)) continue;
-    const NodeId root = table.nodes_of(f)[0];
-    if (tin[root.index()] != kUnseen) continue;
-    enter(root, -1);
-    while (!stack.empty()) {
-      const NodeId v = stack.back().node;
-      const std::span<const FaceIndex> around = table.faces_at(v);
-      if (stack.back().next >= 2 * around.size()) {
+  const bool walked = walk_front_trees(
+      front, table, loops, [&](NodeId v) { return tin[v.index()] != kUnseen; },
+      [&](NodeId v, std::int32_t l) {
+        tin[v.index()] = static_cast<std::uint32_t>(order.size());
+        entry_loop[v.index()] = l;
+        order.push_back(v);
+      },
+      [&](NodeId v, NodeId parent, std::int32_t /*loop*/) {
         tout[v.index()] = static_cast<std::uint32_t>(order.size() - 1);
-        stack.pop_back();
-        if (!stack.empty()) subtree[stack.back().node.index()] += subtree[v.index()];
-        continue;
-      }
-      const std::size_t at = stack.back().next++;
-      const FaceIndex g = around[at / 2];
-      const stc::Quad& n = table.nodes_of(g);
-      int corner = 0;
-      while (n[static_cast<std::size_t>(corner)] != v) ++corner;
-      // The edge (corner, corner + 1) is side `corner`; (corner - 1, corner) is side corner + 3.
-      const bool forward = at % 2 == 0;
-      const int side = forward ? corner : (corner + 3) % 4;
-      const NodeId w = quad_at(n, forward ? corner + 1 : corner + 3);
-      if (tin[w.index()] != kUnseen) continue;
-      const std::int32_t l =
-          loops.loop_of[static_cast<std::size_t>(g)][static_cast<std::size_t>(side % 2)];
-      if (l < 0) return out;  // an edge no loop crosses: not a front this reads; flood instead
-      enter(w, l);
-    }
-  }
+        if (parent.is_valid()) subtree[parent.index()] += subtree[v.index()];
+      });
+  if (!walked) return out;  // an edge no loop crosses: not a front this reads; flood instead
 
   // Per loop, the nodes whose tree edge it crosses, in entry order (buckets back to back).
   std::vector<std::size_t> first(num_loops + 1, 0);

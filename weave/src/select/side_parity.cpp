@@ -6,6 +6,8 @@
 #include <span>
 #include <vector>
 
+#include "front_tree.hpp"
+
 namespace stcweave::weave {
 
 namespace {
@@ -61,57 +63,26 @@ SideNonconvex side_nonconvex(const Front& front, const FaceTable& table, const F
   std::vector<std::uint64_t> pool(stored * words, 0);
 
   // One depth-first tree per component; `cur` holds the parities of the path to the node
-  // on top of the stack (a tree edge flips the bit of the loop that crosses it).
-  struct Frame {
-    NodeId node;
-    std::size_t next = 0;    ///< 2 x incident face + which of the two edges at the node
-    std::int32_t loop = -1;  ///< the loop crossing the tree edge into the node
-  };
+  // being entered or left (a tree edge flips the bit of the loop that crosses it).
   std::vector<std::uint64_t> cur(words, 0);
   std::vector<char> visited(num_nodes, 0);
-  std::vector<Frame> stack;
   const auto flip = [&](std::int32_t l) {
     const auto u = static_cast<std::size_t>(l);
     cur[u / kWord] ^= std::uint64_t{1} << (u % kWord);
   };
-  const auto enter = [&](NodeId v, std::int32_t l) {
-    if (l >= 0) flip(l);
-    visited[v.index()] = 1;
-    if (offset[v.index()] >= 0)
-      std::copy(cur.begin(), cur.end(),
-                pool.begin() + static_cast<std::ptrdiff_t>(offset[v.index()]));
-    stack.push_back({v, 0, l});
-  };
-  for (std::size_t i = 0; i < front.face_capacity(); ++i) {
-    const auto f = static_cast<FaceIndex>(i);
-    if (!front.is_alive(f)) continue;
-    const NodeId root = table.nodes_of(f)[0];
-    if (visited[root.index()] != 0) continue;
-    enter(root, -1);
-    while (!stack.empty()) {
-      const NodeId v = stack.back().node;
-      const std::span<const FaceIndex> around = table.faces_at(v);
-      if (stack.back().next >= 2 * around.size()) {
-        if (stack.back().loop >= 0) flip(stack.back().loop);
-        stack.pop_back();
-        continue;
-      }
-      const std::size_t at = stack.back().next++;
-      const FaceIndex g = around[at / 2];
-      const stc::Quad& n = table.nodes_of(g);
-      int corner = 0;
-      while (n[static_cast<std::size_t>(corner)] != v) ++corner;
-      // The edge (corner, corner + 1) is side `corner`; (corner - 1, corner) is side corner + 3.
-      const bool forward = at % 2 == 0;
-      const int side = forward ? corner : (corner + 3) % 4;
-      const NodeId w = quad_at(n, forward ? corner + 1 : corner + 3);
-      if (visited[w.index()] != 0) continue;
-      const std::int32_t l =
-          loops.loop_of[static_cast<std::size_t>(g)][static_cast<std::size_t>(side % 2)];
-      if (l < 0) return out;  // an edge no loop crosses: not a front this reads; flood instead
-      enter(w, l);
-    }
-  }
+  const bool walked = walk_front_trees(
+      front, table, loops, [&](NodeId v) { return visited[v.index()] != 0; },
+      [&](NodeId v, std::int32_t l) {
+        if (l >= 0) flip(l);
+        visited[v.index()] = 1;
+        if (offset[v.index()] >= 0)
+          std::copy(cur.begin(), cur.end(),
+                    pool.begin() + static_cast<std::ptrdiff_t>(offset[v.index()]));
+      },
+      [&](NodeId /*v*/, NodeId /*parent*/, std::int32_t l) {
+        if (l >= 0) flip(l);
+      });
+  if (!walked) return out;  // an edge no loop crosses: not a front this reads; flood instead
 
   // Per sphere component, the loops some non-convex edge (not crossed by the loop) has its
   // ends on the odd side of (`odd`), or on the even side of (`even`).
