@@ -52,6 +52,7 @@ struct MeshArgs {
   double position_theta = 0.5;
   int shape_sweeps = primal::PositionOptions{}.max_shape_sweeps;
   int cluster_passes = primal::PositionOptions{}.cluster_passes;
+  int threads = primal::PositionOptions{}.threads;
   double shape_target = primal::PositionOptions{}.shape_target;
   double good_start = primal::PositionOptions{}.good_start;
   int certify_depth = 4;
@@ -259,6 +260,7 @@ int run_mesh(const MeshArgs& a) {
   options.position.theta = a.position_theta;
   options.position.max_shape_sweeps = a.shape_sweeps;
   options.position.cluster_passes = a.cluster_passes;
+  options.position.threads = a.threads;
   options.position.shape_target = a.shape_target;
   options.position.good_start = a.good_start;
   options.position.newton_after = a.position_newton_after;
@@ -737,6 +739,13 @@ Action add_mesh_command(CLI::App& app) {
                   "docs/geometry.md \"Local untangling\")")
       ->capture_default_str()
       ->check(CLI::Range(0, 100));
+  sub->add_option("--threads", args->threads,
+                  "positioning: threads for the untangling energy of meshes of 1,024 hexes or "
+                  "more and for the local untangling's two starts (0: one per hardware thread; "
+                  "1: one thread, e.g. when several runs share the machine); the mesh does not "
+                  "depend on it")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 256));
   sub->add_option("--shape-sweeps", args->shape_sweeps,
                   "shape phase after untangling: most sweeps of local max-min moves that raise "
                   "the worst scaled Jacobian (0: off)")

@@ -65,6 +65,19 @@ TEST_F(Cli, MeshIsDeterministicByteForByte) {
   EXPECT_EQ(slurp(a), slurp(b));
 }
 
+// `--threads` changes the work's threads, never the mesh; out of its range it is a usage error.
+TEST_F(Cli, MeshDoesNotDependOnTheThreadCount) {
+  const fs::path one = dir_ / "one.vtk", all = dir_ / "all.vtk";
+  const std::string args = "mesh " + data("lblock.obj") + " --pillow always -q -o ";
+  ASSERT_EQ(run(args + one.string() + " --threads 1").code, 0);
+  ASSERT_EQ(run(args + all.string() + " --threads 0").code, 0);
+  const std::string a = slurp(one);
+  EXPECT_FALSE(a.empty());
+  EXPECT_EQ(a, slurp(all));
+  EXPECT_EQ(run(args + (dir_ / "x.vtk").string() + " --threads -1").code, 1);
+  EXPECT_EQ(run(args + (dir_ / "x.vtk").string() + " --threads 257").code, 1);
+}
+
 // The program tunes glibc's malloc unless GLIBC_TUNABLES names a malloc tunable
 // (cli/allocator.cpp): the mesh must not depend on which allocator settings ran it.
 TEST_F(Cli, MeshDoesNotDependOnTheAllocatorSettings) {
