@@ -126,12 +126,14 @@ struct SubMesh {
 };
 
 /// One sub-mesh positioned from one start: its positions, and the L-BFGS iterations it used
-/// under its cap (`ok` false when the positioning refused the sub-mesh).
+/// under its cap (`ok` false when the positioning refused the sub-mesh; `error` set when it
+/// threw anything else, run on a thread of its own).
 struct Try {
   SubMesh sub;
   bool ok = false;
   std::size_t iterations = 0;
   int cap = 0;
+  std::exception_ptr error;
 };
 
 SubMesh sub_mesh(const HexMesh& mesh, const std::vector<bool>& fixed, const NodeHexes& node_hexes,
@@ -292,8 +294,6 @@ ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
         // the first leaves it only when the first adds no work, so it is kept only when it
         // stopped below the cap the sequential order gives it, and run again otherwise.
         std::optional<Try> harmonic;
-        std::exception_ptr harmonic_error;
-        int harmonic_cap = 0;
         for (const StartPosition start : {StartPosition::Keep, StartPosition::Harmonic}) {
           if (best.inverted == 0) break;
           if (spent()) {
@@ -303,24 +303,26 @@ ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
           const int cap = cap_now();
           std::thread beside;
           if (start == StartPosition::Keep && speculate) {
-            harmonic_cap = cap;
+            harmonic.emplace();
+            harmonic->cap = cap;
             beside = std::thread([&, cap] {
               try {
-                harmonic = run(StartPosition::Harmonic, cap);
+                *harmonic = run(StartPosition::Harmonic, cap);
               } catch (...) {
-                harmonic_error = std::current_exception();
+                harmonic->error = std::current_exception();
               }
             });
           }
           Try t;
           try {
-            if (start == StartPosition::Harmonic && harmonic_error && harmonic_cap == cap)
-              std::rethrow_exception(harmonic_error);
-            t = start == StartPosition::Harmonic && harmonic &&
-                        (harmonic->cap == cap ||
-                         (harmonic->ok && harmonic->iterations < static_cast<std::size_t>(cap)))
-                    ? std::move(*harmonic)
-                    : run(start, cap);
+            if (start == StartPosition::Harmonic && harmonic &&
+                (harmonic->cap == cap ||
+                 (harmonic->ok && harmonic->iterations < static_cast<std::size_t>(cap)))) {
+              if (harmonic->error) std::rethrow_exception(harmonic->error);
+              t = std::move(*harmonic);
+            } else {
+              t = run(start, cap);
+            }
           } catch (...) {
             if (beside.joinable()) beside.join();
             throw;
