@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "position_pinch.hpp"
+#include "stcweave/primal/beside.hpp"
 #include "stcweave/primal/cut.hpp"
 #include "stcweave/primal/edge_angles.hpp"
 #include "stcweave/primal/pillow.hpp"
@@ -308,20 +309,54 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
   }
   r.seconds.weave = clock.lap();
 
+  // The validation and the harmonic placement both only read the woven complex: with a
+  // second thread they run side by side (with it, the pinched face pairs the pillow stage
+  // looks for are found there too). The validation's verdict is still acted on first.
+  const bool side_by_side = second_thread(options.position.threads);
+  struct Checked {
+    stc::ValidationReport validation;
+    std::optional<std::vector<PinchedFaces>> pinched;
+  };
   stage("validate");
-  r.validation = stc::validate_hex_complex(r.woven.complex, &r.surface.surface);
-  r.seconds.validate = clock.lap();
-  if (!r.validation.valid && !options.keep_invalid) stc::require_valid(r.validation);
+  Beside<Checked> checking(side_by_side, [&] {
+    Checked c{stc::validate_hex_complex(r.woven.complex, &r.surface.surface), std::nullopt};
+    if (side_by_side && c.validation.valid) c.pinched = pinched_faces(r.woven.complex);
+    return c;
+  });
+  Checked checked;
+  const auto act_on_validation = [&] {
+    checked = checking.get();
+    r.validation = checked.validation;
+    if (!r.validation.valid && !options.keep_invalid) stc::require_valid(r.validation);
+  };
+  if (!side_by_side) act_on_validation();  // done already: an invalid complex stops here
+  r.seconds.validate = checking.seconds();
 
   stage("recover");
-  if (r.interior.used) {
-    // The tet split comes with its own positions: Gmsh's interior vertices, the centres.
-    r.mesh.complex = r.woven.complex;
-    r.mesh.points = tet_positions;
-  } else {
-    r.mesh = recover_hex_mesh(r.surface.points, r.woven, &r.harmonic);
+  std::exception_ptr recover_error;
+  Stopwatch recover_clock;
+  try {
+    if (r.interior.used) {
+      // The tet split comes with its own positions: Gmsh's interior vertices, the centres.
+      r.mesh.complex = r.woven.complex;
+      r.mesh.points = tet_positions;
+    } else {
+      r.mesh = recover_hex_mesh(r.surface.points, r.woven, &r.harmonic);
+    }
+  } catch (...) {
+    recover_error = std::current_exception();
   }
-  r.seconds.recover = clock.lap();
+  r.seconds.recover = recover_clock.lap();
+  if (side_by_side) {
+    act_on_validation();
+    r.seconds.validate = checking.seconds();
+  }
+  const double validate_and_recover = clock.lap();
+  if (side_by_side) {
+    r.seconds.overlap =
+        std::max(0.0, r.seconds.validate + r.seconds.recover - validate_and_recover);
+  }
+  if (recover_error) std::rethrow_exception(recover_error);
 
   // The layer placement reads the weave's own hexes, so it runs before pillowing.
   const bool layer_start = !r.interior.used && options.untangle && options.layer_start &&
@@ -342,7 +377,9 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
   // positions: pillow a 2-hex block at each (interior nodes only); no-op without one. The
   // result is then validated with the pinched-pair check: one left is refused, not output.
   if (r.validation.valid) {
-    const UnpinchReport u = unpinch(r.mesh, r.surface.surface.num_nodes, r.surface.surface);
+    // The pairs found beside the recovery are those of this complex unless a pillow changed it.
+    const UnpinchReport u = unpinch(r.mesh, r.surface.surface.num_nodes, r.surface.surface,
+                                    r.pillow.applied ? std::nullopt : std::move(checked.pinched));
     r.pillow.pinched_pairs = u.pinched_before;
     r.pillow.unpinch_blocks = u.blocks;
     r.pillow.unpinch_hexes = u.hexes_added;
@@ -366,6 +403,16 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
   }
   r.seconds.pillow = clock.lap();
 
+  // The STC reads only the complex, which the positioning does not change: with a second
+  // thread it is built beside the positioning and the quality summary.
+  Stopwatch section;
+  std::optional<Beside<stc::HexStc>> stc_beside;
+  const auto build_stc_beside = [&] {
+    if (options.build_stc && side_by_side)
+      stc_beside.emplace(true, [&mesh = r.mesh] { return stc::build_hex_stc(mesh.complex); });
+  };
+  build_stc_beside();
+
   if (options.untangle) {
     stage("position");
     PositionOptions position = options.position;
@@ -384,7 +431,11 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
       const bool keep = choose_pillowed(with, without);
       r.pillow = compared_pillow_report(r.pillow, keep, with, without);
       if (!keep) {
+        // The complex changes: the STC of the pillowed one is dropped (after its thread ends).
+        if (stc_beside) (void)stc_beside->get();
+        stc_beside.reset();
         r.mesh = std::move(*woven_mesh);
+        build_stc_beside();
         r.position = std::move(unpillowed);
         r.validation = stc::validate_hex_complex(r.mesh.complex, &r.surface.surface,
                                                  r.pillow.pinched_pairs > 0);
@@ -396,6 +447,18 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
   stage("quality");
   r.quality = summarize_quality(r.mesh);
   r.seconds.quality = clock.lap();
+
+  if (stc_beside) {
+    r.stc = stc_beside->get();
+    r.seconds.stc = stc_beside->seconds();
+    clock.lap();
+    r.seconds.overlap +=
+        std::max(0.0, r.seconds.position + r.seconds.quality + r.seconds.stc - section.lap());
+  } else if (options.build_stc) {
+    stage("stc");
+    r.stc = stc::build_hex_stc(r.mesh.complex);
+    r.seconds.stc = clock.lap();
+  }
   return r;
 }
 

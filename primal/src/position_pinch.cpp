@@ -10,7 +10,9 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "stcweave/stc/validate.hpp"
@@ -96,9 +98,10 @@ HexMesh pillow_block(const HexMesh& mesh, const std::vector<std::size_t>& block)
 
 }  // namespace
 
-UnpinchReport unpinch(HexMesh& mesh, std::size_t num_fixed, const stc::QuadSurface& boundary) {
+UnpinchReport unpinch(HexMesh& mesh, std::size_t num_fixed, const stc::QuadSurface& boundary,
+                      std::optional<std::vector<PinchedFaces>> found) {
   UnpinchReport r;
-  std::vector<PinchedFaces> pinched = pinched_faces(mesh.complex);
+  std::vector<PinchedFaces> pinched = found ? std::move(*found) : pinched_faces(mesh.complex);
   r.pinched_before = pinched.size();
   // Each accepted block lowers the count, so this ends.
   bool progress = true;

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "stcweave/primal/mesh.hpp"
@@ -33,6 +34,9 @@ struct UnpinchReport {
 /// hex complex with `boundary` as its faces used once, and the pinched count drops; pairs
 /// with no such block are left (counted in `pinched_after`). Nothing changes when there is
 /// no pinched pair. New nodes and hexes are appended.
-UnpinchReport unpinch(HexMesh& mesh, std::size_t num_fixed, const stc::QuadSurface& boundary);
+/// `pinched`, when given, must be `pinched_faces(mesh.complex)` (found beforehand, beside
+/// another stage).
+UnpinchReport unpinch(HexMesh& mesh, std::size_t num_fixed, const stc::QuadSurface& boundary,
+                      std::optional<std::vector<PinchedFaces>> pinched = std::nullopt);
 
 }  // namespace stcweave::primal

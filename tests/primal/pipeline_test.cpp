@@ -6,8 +6,13 @@
 #include <cstdlib>
 #include <iostream>
 #include <set>
+#include <string>
+#include <utility>
+#include <vector>
 
+#include "stcweave/primal/beside.hpp"
 #include "stcweave/stc/errors.hpp"
+#include "stcweave/stc/hex_stc.hpp"
 #include "stcweave/stc/surface_topology.hpp"
 #include "support/shapes.hpp"
 
@@ -189,7 +194,6 @@ TEST(Pipeline, CheckModeKeepsTheFrontValidOnTheRhombicDodecahedron) {
   EXPECT_TRUE(r.validation.valid) << r.validation.summary();
   EXPECT_EQ(r.mesh.complex.hexes.size(), 4u);
 }
-
 }  // namespace
 }  // namespace stcweave::primal
 
@@ -283,6 +287,94 @@ TEST(Pipeline, UndecidedHandlesAreRefused) {
               std::string::npos)
         << e.what();
   }
+}
+
+// Per hex, its three sheets and chords (what the cell data and the report read of the STC).
+std::vector<std::array<std::int32_t, 6>> stc_of_hexes(const stc::HexStc& stc) {
+  std::vector<std::array<std::int32_t, 6>> out;
+  for (const stc::StcVertex& v : stc.vertices) {
+    out.push_back({v.sheets[0].value(), v.sheets[1].value(), v.sheets[2].value(),
+                   v.chords[0].value(), v.chords[1].value(), v.chords[2].value()});
+  }
+  return out;
+}
+
+// With a second thread the pipeline validates beside the harmonic placement (finding the
+// pinched face pairs there too) and builds the STC beside the positioning; nothing but the
+// seconds may change. (On a machine with one hardware thread both runs are sequential.)
+TEST(Pipeline, StagesSideBySideGiveTheSequentialResult) {
+  const std::vector<std::pair<std::string, SurfaceMesh>> inputs = {
+      {"lblock", test::voxel_surface(test::lblock_cells())},
+      {"box 5x4x3", test::box_surface(5, 4, 3)},
+      {"rhombic dodecahedron", test::rhombic_dodecahedron()},
+      {"triangle-split box", test::triangle_split_of(test::box_surface(2, 2, 2))},
+      {"square ring", test::voxel_surface(test::ring_cells())}};
+  for (std::size_t i = 0; i <= inputs.size(); ++i) {
+    // Last, the box again with every fixed corner taken as bad (below 1.5) but positive: the
+    // pillowed and the woven complexes are compared and the woven one, all cubes, is kept, so
+    // the STC built beside the pillowed one's positioning is dropped and built again.
+    const bool forced = i == inputs.size();
+    const auto& [name, surface] = inputs[forced ? 1 : i];
+    SCOPED_TRACE(forced ? "box, pillow compared" : name);
+    MeshOptions one;
+    one.build_stc = true;
+    one.position.threads = 1;
+    if (forced) one.pillow.min_fixed_corner = 1.5;
+    MeshOptions two = one;
+    two.position.threads = 2;
+    const MeshResult a = mesh_file(file_of(surface, name), one);
+    const MeshResult b = mesh_file(file_of(surface, name), two);
+    ASSERT_TRUE(a.validation.valid) << a.validation.summary();
+    EXPECT_EQ(a.validation.summary(), b.validation.summary());
+    EXPECT_EQ(a.mesh.complex.hexes, b.mesh.complex.hexes);
+    ASSERT_EQ(a.mesh.points.rows(), b.mesh.points.rows());
+    EXPECT_TRUE((a.mesh.points.array() == b.mesh.points.array()).all());
+    EXPECT_EQ(a.pillow.reason, b.pillow.reason);
+    EXPECT_EQ(a.pillow.pinched_pairs, b.pillow.pinched_pairs);
+    EXPECT_EQ(a.quality.min_scaled_jacobian, b.quality.min_scaled_jacobian);
+    // The STC is that of the final complex (after any pillow the comparison dropped).
+    ASSERT_TRUE(a.stc && b.stc);
+    const stc::HexStc fresh = stc::build_hex_stc(a.mesh.complex);
+    EXPECT_EQ(stc_of_hexes(*a.stc), stc_of_hexes(fresh));
+    EXPECT_EQ(stc_of_hexes(*b.stc), stc_of_hexes(fresh));
+    EXPECT_EQ(a.stc->sheets.size(), fresh.sheets.size());
+    EXPECT_EQ(b.stc->chords.size(), fresh.chords.size());
+    // One thread: nothing ran at once.
+    EXPECT_EQ(a.seconds.overlap, 0.0);
+    EXPECT_GE(b.seconds.overlap, 0.0);
+    if (forced) {
+      EXPECT_TRUE(a.pillow.compared);
+      EXPECT_FALSE(a.pillow.applied);
+      EXPECT_EQ(a.mesh.complex.hexes.size(), 60u);
+    }
+  }
+}
+
+TEST(Beside, GivesTheTaskResultOrRethrowsItsErrorEitherWay) {
+  for (const bool parallel : {false, true}) {
+    SCOPED_TRACE(parallel ? "second thread" : "at once");
+    Beside<int> sum(parallel, [] {
+      int s = 0;
+      for (int i = 1; i <= 100; ++i) s += i;
+      return s;
+    });
+    EXPECT_EQ(sum.get(), 5050);
+    EXPECT_GE(sum.seconds(), 0.0);
+    Beside<int> failing(parallel, []() -> int { throw InvalidInput("the task failed"); });
+    EXPECT_THROW((void)failing.get(), InvalidInput);
+  }
+  // Not waited for: the destructor waits.
+  int touched = 0;
+  {
+    const Beside<int> unused(true, [&touched] { return ++touched; });
+  }
+  EXPECT_EQ(touched, 1);
+}
+
+TEST(Pipeline, NoStcUnlessAskedFor) {
+  const MeshResult r = mesh_file(file_of(test::box_surface(2, 2, 2), "box"));
+  EXPECT_FALSE(r.stc.has_value());
+  EXPECT_EQ(r.seconds.stc, 0.0);
 }
 
 }  // namespace

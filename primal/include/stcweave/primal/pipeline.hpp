@@ -7,6 +7,7 @@
 
 #include <array>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,7 @@
 #include "stcweave/primal/recover.hpp"
 #include "stcweave/primal/self_crossing.hpp"
 #include "stcweave/primal/tet_interior.hpp"
+#include "stcweave/stc/hex_stc.hpp"
 #include "stcweave/stc/validate.hpp"
 #include "stcweave/weave/weave.hpp"
 
@@ -67,12 +69,18 @@ struct MeshOptions {
   /// The interior of a triangle-split surface: woven, or a split tetrahedral mesh, or
   /// (`auto`, the default) both and the better kept (tet_interior.hpp, docs/tet-interior.md).
   TetInteriorOptions interior;
+  /// Also build the final mesh's STC (`MeshResult::stc`), beside the positioning when
+  /// `position.threads` allows a second thread (the positioning moves nodes only).
+  bool build_stc = false;
   /// Called when a stage starts ("diagnose", "orient", "weave", "validate", "recover",
-  /// "pillow", "position", "quality").
+  /// "pillow", "position", "quality"; with `build_stc` and no second thread, "stc").
   std::function<void(const std::string& stage)> on_stage;
 };
 
-/// Wall-clock seconds per stage.
+/// Wall-clock seconds per stage. Two stages may run side by side (the validation beside the
+/// harmonic placement of `recover`, the STC beside the positioning, when
+/// `PositionOptions::threads` allows a second thread):
+/// each is given its own duration, and `overlap` the seconds counted twice that way.
 struct StageSeconds {
   double diagnose = 0.0;
   double orient = 0.0;
@@ -85,9 +93,13 @@ struct StageSeconds {
   /// `InteriorMode::Auto` on a triangle-split surface: the whole pipeline with the interior
   /// that was not kept (the other stages are those of the kept one).
   double other_interior = 0.0;
+  double stc = 0.0;  ///< the final mesh's STC (`MeshOptions::build_stc`)
+  /// Seconds during which two of the stages above ran at once (counted in both).
+  double overlap = 0.0;
+  /// Wall-clock seconds of the whole run.
   [[nodiscard]] double total() const {
     return diagnose + orient + weave + validate + recover + pillow + position + quality +
-           other_interior;
+           other_interior + stc - overlap;
   }
 };
 
@@ -119,6 +131,8 @@ struct MeshResult {
   /// kept being the one with the filter.
   std::string depth_filter_retry;
   QualitySummary quality;
+  /// The STC of `mesh.complex` (with `MeshOptions::build_stc`; empty otherwise).
+  std::optional<stc::HexStc> stc;
   StageSeconds seconds;
 };
 
