@@ -406,10 +406,15 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
   // The STC reads only the complex, which the positioning does not change: with a second
   // thread it is built beside the positioning and the quality summary.
   Stopwatch section;
-  std::optional<Beside<stc::HexStc>> stc_beside;
+  using SharedStc = std::shared_ptr<const stc::HexStc>;
+  const auto build_stc = [](const HexMesh& mesh) {
+    // Built in place (not moved: a moved HexStc copies its Boost graphs).
+    return SharedStc(new stc::HexStc(stc::build_hex_stc(mesh.complex)));  // NOLINT
+  };
+  std::optional<Beside<SharedStc>> stc_beside;
   const auto build_stc_beside = [&] {
     if (options.build_stc && side_by_side)
-      stc_beside.emplace(true, [&mesh = r.mesh] { return stc::build_hex_stc(mesh.complex); });
+      stc_beside.emplace(true, [&] { return build_stc(r.mesh); });
   };
   build_stc_beside();
 
@@ -456,7 +461,7 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
         std::max(0.0, r.seconds.position + r.seconds.quality + r.seconds.stc - section.lap());
   } else if (options.build_stc) {
     stage("stc");
-    r.stc = stc::build_hex_stc(r.mesh.complex);
+    r.stc = build_stc(r.mesh);
     r.seconds.stc = clock.lap();
   }
   return r;

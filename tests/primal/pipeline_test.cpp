@@ -373,7 +373,7 @@ TEST(Beside, GivesTheTaskResultOrRethrowsItsErrorEitherWay) {
 
 TEST(Pipeline, NoStcUnlessAskedFor) {
   const MeshResult r = mesh_file(file_of(test::box_surface(2, 2, 2), "box"));
-  EXPECT_FALSE(r.stc.has_value());
+  EXPECT_EQ(r.stc, nullptr);
   EXPECT_EQ(r.seconds.stc, 0.0);
 }
 

@@ -7,7 +7,7 @@
 
 #include <array>
 #include <functional>
-#include <optional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -131,8 +131,9 @@ struct MeshResult {
   /// kept being the one with the filter.
   std::string depth_filter_retry;
   QualitySummary quality;
-  /// The STC of `mesh.complex` (with `MeshOptions::build_stc`; empty otherwise).
-  std::optional<stc::HexStc> stc;
+  /// The STC of `mesh.complex` (with `MeshOptions::build_stc`; null otherwise). Held by
+  /// pointer: Boost's adjacency_list (1.74) copies itself when moved, and the result moves.
+  std::shared_ptr<const stc::HexStc> stc;
   StageSeconds seconds;
 };
 
