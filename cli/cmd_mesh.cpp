@@ -53,6 +53,7 @@ struct MeshArgs {
   double position_theta = 0.5;
   int shape_sweeps = primal::PositionOptions{}.max_shape_sweeps;
   int cluster_passes = primal::PositionOptions{}.cluster_passes;
+  bool no_cluster_hinge = false;
   int threads = primal::PositionOptions{}.threads;
   double shape_target = primal::PositionOptions{}.shape_target;
   double good_start = primal::PositionOptions{}.good_start;
@@ -164,6 +165,9 @@ nlohmann::json position_json(const primal::PositionReport& p) {
             {"work", p.clusters.work},
             {"inverted_before", p.clusters.inverted_before},
             {"inverted_after", p.clusters.inverted_after},
+            {"hinge_clusters", p.clusters.hinge_clusters},
+            {"hinge_tries", p.clusters.hinge_tries},
+            {"hinge_accepted", p.clusters.hinge_accepted},
             {"stop", p.clusters.stop}}},
           {"shape",
            {{"ran", p.shape.ran},
@@ -261,6 +265,7 @@ int run_mesh(const MeshArgs& a) {
   options.position.theta = a.position_theta;
   options.position.max_shape_sweeps = a.shape_sweeps;
   options.position.cluster_passes = a.cluster_passes;
+  options.position.cluster_hinge = !a.no_cluster_hinge;
   options.position.threads = a.threads;
   options.build_stc = true;  // the report's sheets and chords, the cell data
   options.position.shape_target = a.shape_target;
@@ -744,6 +749,10 @@ Action add_mesh_command(CLI::App& app) {
                   "docs/geometry.md \"Local untangling\")")
       ->capture_default_str()
       ->check(CLI::Range(0, 100));
+  sub->add_flag("--no-cluster-hinge", args->no_cluster_hinge,
+                "local untangling: skip its last phase (a sum of hinges on a mean-ratio measure "
+                "minimised over each cluster still inverted; docs/geometry.md \"Local "
+                "untangling\")");
   sub->add_option("--threads", args->threads,
                   "positioning: threads for the untangling energy of meshes of 1,024 hexes or "
                   "more and for the local untangling's two starts; above 1, stages that read the "

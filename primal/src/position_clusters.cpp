@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "node_hexes.hpp"
+#include "position_hinge.hpp"
 #include "stcweave/primal/position.hpp"
 #include "stcweave/primal/quality.hpp"
 #include "stcweave/stc/errors.hpp"
@@ -167,6 +168,99 @@ SubMesh sub_mesh(const HexMesh& mesh, const std::vector<bool>& fixed, const Node
   for (const stc::Quad& q : stc::boundary_surface(s.mesh.complex).quads)
     for (const NodeId v : q) s.fixed[v.index()] = true;
   return s;
+}
+
+/// The hinge phase: for each cluster still inverted, the hinge untangling
+/// (position_hinge.hpp) of the free nodes of the cluster grown by 1 .. `cluster_max_rings`
+/// rings (the sub-mesh of one ring more, its outer nodes held, so every hex they touch is
+/// weighed), with beta 0.02 then 0.05, in that order, until one leaves none inverted among the
+/// widest sub-mesh's hexes; the best is kept when it beats the current positions, as above.
+/// Under the same work bound. Updates `inverted` and `report`.
+void hinge_phase(HexMesh& mesh, const std::vector<bool>& fixed, const NodeHexes& node_hexes,
+                 const PositionOptions& options, std::vector<std::size_t>& inverted,
+                 ClusterReport& report) {
+  const std::vector<stc::Hex>& hexes = mesh.complex.hexes;
+  std::vector<char> mark(hexes.size(), 0);
+  const std::vector<std::vector<std::size_t>> clusters = clusters_of(inverted, hexes, node_hexes);
+  bool work_bound = false;
+  for (std::size_t c = 0; c < clusters.size() && !work_bound; ++c) {
+    const std::vector<std::vector<std::size_t>> layers =
+        grown(clusters[c], options.cluster_max_rings + 1, hexes, node_hexes, mark);
+    const Tally at_start = tally(mesh.points, hexes, layers.back());
+    if (at_start.inverted == 0) continue;
+    ++report.hinge_clusters;
+    Tally best = at_start;
+    std::vector<std::pair<std::int32_t, Eigen::RowVector3d>> best_moves;
+    for (int rings = 1; rings <= options.cluster_max_rings && best.inverted > 0 && !work_bound;
+         ++rings) {
+      const std::vector<std::size_t>& hexes_in = layers[static_cast<std::size_t>(rings) + 1];
+      if (hexes_in.size() > options.cluster_max_hexes) break;
+      for (const double beta : {0.02, 0.05}) {
+        if (best.inverted == 0) break;
+        if (options.cluster_max_work > 0 && report.work >= options.cluster_max_work) {
+          work_bound = true;
+          break;
+        }
+        // At most what the work bound leaves and the caller's total iteration bound.
+        std::size_t cap =
+            options.cluster_max_work == 0
+                ? std::numeric_limits<std::size_t>::max()
+                : std::max<std::size_t>(1, (options.cluster_max_work - report.work) /
+                                               std::max<std::size_t>(1, hexes_in.size()));
+        if (options.max_total_iterations > 0)
+          cap = std::min(cap, static_cast<std::size_t>(options.max_total_iterations));
+        SubMesh sub = sub_mesh(mesh, fixed, node_hexes, hexes_in, true);
+        const HingeOutcome run = hinge_untangle(sub.mesh, sub.fixed, beta, cap);
+        ++report.hinge_tries;
+        report.work += hexes_in.size() * std::max<std::size_t>(1, run.iterations);
+        // Judged over the widest sub-mesh's hexes, with the moved nodes put in place.
+        std::vector<std::pair<std::int32_t, Eigen::RowVector3d>> moves;
+        for (std::size_t v = 0; v < sub.node_of.size(); ++v) {
+          if (!sub.fixed[v])
+            moves.emplace_back(sub.node_of[v].value(),
+                               sub.mesh.points.row(static_cast<Eigen::Index>(v)));
+        }
+        std::vector<std::pair<std::int32_t, Eigen::RowVector3d>> undo;
+        undo.reserve(moves.size());
+        for (const auto& [v, at] : moves) {
+          undo.emplace_back(v, mesh.points.row(v));
+          mesh.points.row(v) = at;
+        }
+        const Tally tried = tally(mesh.points, hexes, layers.back());
+        for (const auto& [v, at] : undo) mesh.points.row(v) = at;
+        if (better(tried, best)) {
+          best = tried;
+          best_moves = std::move(moves);
+        }
+      }
+    }
+    if (better(best, at_start)) {
+      for (const auto& [v, at] : best_moves) mesh.points.row(v) = at;
+      ++report.hinge_accepted;
+      ++report.accepted;
+    }
+    if (options.progress) {
+      PositionProgress p;
+      p.phase = PositionProgress::Phase::Clusters;
+      p.step = c + 1;
+      p.limit = clusters.size();
+      p.pass = report.passes + 1;
+      p.inverted = inverted.size() - at_start.inverted + best.inverted;
+      options.progress(p);
+    }
+  }
+  std::vector<std::size_t> left;
+  for (std::size_t h = 0; h < hexes.size(); ++h)
+    if (hex_scaled_jacobian(mesh.points, hexes[h]) <= 0.0) left.push_back(h);
+  inverted = std::move(left);
+  report.inverted_after = inverted.size();
+  if (inverted.empty()) {
+    report.stop = "untangled by the hinge phase";
+  } else if (work_bound) {
+    report.stop = "work bound (hinge phase)";
+  } else {
+    report.stop += "; hinge phase: " + std::to_string(inverted.size()) + " left";
+  }
 }
 
 }  // namespace
@@ -368,10 +462,14 @@ ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
     if (work_bound) break;
     if (inverted.size() >= at_pass_start) {
       report.stop = "settled";
-      return report;
+      break;
     }
   }
-  if (work_bound) report.stop = "work bound";
+  if (work_bound) {
+    report.stop = "work bound";
+    return report;
+  }
+  if (options.cluster_hinge) hinge_phase(mesh, fixed, node_hexes, options, inverted, report);
   return report;
 }
 

@@ -225,7 +225,8 @@ TEST(PositionEnergy, ProjectedHessianIsPositiveSemiDefiniteWhereTheExactOneIsNot
   harmonic.start = StartPosition::Harmonic;
   harmonic.max_outer_iterations = 1;
   harmonic.max_inner_iterations = 1;
-  harmonic.max_repair_sweeps = 0;  // keep it tangled: no repair after the early stop
+  harmonic.max_repair_sweeps = 0;  // keep it tangled: no repair after the early stop,
+  harmonic.cluster_passes = 0;     // nor local untangling
   HexMesh tangled = mesh;
   (void)position_nodes(tangled, harmonic);  // one iteration from the harmonic start
   const auto eigenvalues = [&](EnergyDerivatives d) {

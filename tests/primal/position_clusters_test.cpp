@@ -8,6 +8,7 @@
 #include <set>
 #include <string>
 
+#include "../../primal/src/position_hinge.hpp"
 #include "position_helpers.hpp"
 #include "stcweave/primal/position.hpp"
 #include "stcweave/primal/quality.hpp"
@@ -105,7 +106,10 @@ TEST(LocalUntangling, NeverRaisesTheInvertedCountWhereNothingCanMove) {
   EXPECT_TRUE(r.ran);
   EXPECT_EQ(r.inverted_after, inverted);
   EXPECT_EQ(r.accepted, 0U);
-  EXPECT_EQ(r.stop, "settled");
+  // The hinge phase after the passes cannot move anything either.
+  EXPECT_EQ(r.stop, "settled; hinge phase: " + std::to_string(inverted) + " left");
+  EXPECT_EQ(r.hinge_accepted, 0U);
+  EXPECT_GE(r.hinge_tries, 1U);
   EXPECT_EQ(r.passes, 1U);
   EXPECT_TRUE(mesh.points == start);
 }
@@ -127,7 +131,8 @@ TEST(LocalUntangling, StopsAtTheWorkBound) {
   options.cluster_max_work = 0;
   const ClusterReport all = untangle_clusters(mesh, fixed, options);
   EXPECT_EQ(all.sub_problems, 6U);
-  EXPECT_EQ(all.stop, "settled");
+  EXPECT_EQ(all.hinge_tries, 6U);  // 1 to 3 rings, beta 0.02 and 0.05
+  EXPECT_EQ(all.stop.rfind("settled; hinge phase: ", 0), 0U) << all.stop;
 }
 
 TEST(LocalUntangling, OffOrNothingInvertedLeavesTheMeshAlone) {
@@ -294,6 +299,66 @@ TEST(LocalUntangling, TheTwoStartsSideBySideGiveTheSequentialResult) {
   }
   EXPECT_EQ(compared, 19U);
   EXPECT_GT(harmonic_tried, 0U) << "no harmonic start was tried: the test shows nothing";
+}
+
+// The hinge untangling (position_hinge.hpp) alone: the fold of the 7x7x7 box, every interior
+// node free, boundary held.
+TEST(HingeUntangle, UnfoldsAFoldWithTheBoundaryHeld) {
+  std::vector<bool> fixed;
+  std::size_t moved = 0;
+  HexMesh mesh = box_with_a_fold(&fixed, &moved, 1.6);
+  ASSERT_GT(summarize_quality(mesh, 0).inverted, 0U) << "the test needs a fold";
+  const Points start = mesh.points;
+  HexMesh again = mesh;
+  const HingeOutcome r = hinge_untangle(mesh, fixed, 0.05, 100000);
+  EXPECT_EQ(summarize_quality(mesh, 0).inverted, 0U);
+  EXPECT_GT(summarize_quality(mesh, 0).min_scaled_jacobian, 0.05);
+  EXPECT_GE(r.iterations, 1U);
+  EXPECT_EQ(r.stages, 10U);  // delta 0.1, 0.03, ... down to 2e-6
+  for (std::size_t v = 0; v < fixed.size(); ++v) {
+    if (fixed[v]) {
+      EXPECT_TRUE(mesh.points.row(static_cast<Eigen::Index>(v)) ==
+                  start.row(static_cast<Eigen::Index>(v)))
+          << "fixed node n" << v << " moved";
+    }
+  }
+  // Deterministic.
+  (void)hinge_untangle(again, fixed, 0.05, 100000);
+  EXPECT_TRUE(again.points == mesh.points);
+}
+
+TEST(HingeUntangle, KeepsToItsIterationBoundAndMovesNothingWithoutFreeNodes) {
+  std::vector<bool> fixed;
+  std::size_t moved = 0;
+  HexMesh mesh = box_with_a_fold(&fixed, &moved, 1.6);
+  HexMesh bounded = mesh;
+  const HingeOutcome r = hinge_untangle(bounded, fixed, 0.05, 3);
+  EXPECT_LE(r.iterations, 3U);
+  EXPECT_GE(r.stages, 1U);
+  std::fill(fixed.begin(), fixed.end(), true);
+  const Points start = mesh.points;
+  const HingeOutcome none = hinge_untangle(mesh, fixed, 0.05, 1000);
+  EXPECT_EQ(none.iterations, 0U);
+  EXPECT_TRUE(mesh.points == start);
+}
+
+// The hinge phase runs only where the passes leave hexes inverted: on the fold, which the
+// passes untangle, it never runs, and the result is the one without it (the corpus test on
+// `pmp/fandisk_quads` has a mesh the passes leave inverted and the phase untangles).
+TEST(LocalUntangling, TheHingePhaseRunsOnlyWhereThePassesLeftHexesInverted) {
+  std::vector<bool> fixed;
+  std::size_t moved = 0;
+  HexMesh mesh = box_with_a_fold(&fixed, &moved, 1.6);
+  HexMesh without_hinge = mesh;
+  PositionOptions options;
+  const ClusterReport on = untangle_clusters(mesh, fixed, options);
+  options.cluster_hinge = false;
+  const ClusterReport off = untangle_clusters(without_hinge, fixed, options);
+  EXPECT_EQ(on.stop, "untangled");
+  EXPECT_EQ(on.hinge_tries, 0U);
+  EXPECT_EQ(on.hinge_clusters, 0U);
+  EXPECT_TRUE(mesh.points == without_hinge.points);
+  EXPECT_EQ(off.stop, on.stop);
 }
 
 }  // namespace

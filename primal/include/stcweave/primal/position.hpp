@@ -198,6 +198,10 @@ struct PositionOptions {
   /// spends (4.2e7) and above `pmp/fandisk_quads` (3.1e7 and 3.9e7; docs/geometry.md "Local
   /// untangling").
   std::size_t cluster_max_work = 100000000;
+  /// Local untangling: when the passes leave hexes inverted, a last phase minimises a sum of
+  /// hinges on a mean-ratio measure over each cluster's sub-meshes (see `untangle_clusters`;
+  /// docs/geometry.md "Local untangling", the hinge phase); under the same work bound.
+  bool cluster_hinge = true;
   /// Called after every untangling round, every repair or shape sweep and every cluster of
   /// the local untangling when set (see `PositionProgress`); the CLI's `--progress` prints it.
   std::function<void(const PositionProgress&)> progress;
@@ -323,9 +327,14 @@ struct ClusterReport {
   std::size_t work = 0;
   std::size_t inverted_before = 0;
   std::size_t inverted_after = 0;
+  std::size_t hinge_clusters = 0;  ///< clusters the hinge phase worked on
+  std::size_t hinge_tries = 0;     ///< its sub-meshes (at most 2 per ring count)
+  std::size_t hinge_accepted = 0;  ///< its clusters whose best try was kept (in `accepted` too)
   /// "untangled" (no hex inverted), "settled" (a pass lowered nothing), "pass limit",
   /// "work bound" (`cluster_max_work`), "nothing inverted", "no free node" (in
-  /// `position_nodes`'s report), "off".
+  /// `position_nodes`'s report), "off"; after the hinge phase, "untangled by the hinge
+  /// phase", "work bound (hinge phase)" or the passes' stop followed by "; hinge phase: N
+  /// left".
   std::string stop;
 };
 /// Local untangling of the hexes the untangling and the repair left inverted: the inverted
@@ -336,7 +345,11 @@ struct ClusterReport {
 /// over the widest sub-mesh) is kept when it beats the current positions, so the inverted
 /// count never rises and, at an equal count, the worst hex there never drops. `options` as
 /// `position_nodes` takes them (it checks them; an invalid one makes every sub-mesh fail).
-/// Up to `cluster_passes` passes, while a pass lowers the count. Deterministic.
+/// Up to `cluster_passes` passes, while a pass lowers the count. Then, with `cluster_hinge`
+/// and hexes still inverted (and the work bound not reached), the hinge phase: each cluster
+/// left, grown by 1 .. `cluster_max_rings` rings, has the free nodes of those hexes moved by
+/// `hinge_untangle` (beta 0.02, then 0.05; every hex they touch weighed), kept on the same
+/// terms. Deterministic.
 /// docs/geometry.md "Local untangling" has the measurements.
 /// \pre `fixed.size() == mesh.points.rows()` (checked: InvalidInput).
 ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
