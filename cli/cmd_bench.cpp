@@ -23,6 +23,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
@@ -58,6 +59,7 @@ struct BenchArgs {
   std::string out = "bench-results";
   std::string rules = "extended";
   double timeout = 180.0;
+  int threads = 0;
   std::size_t memory_mb = 4096;
   bool quiet = false;
 };
@@ -328,6 +330,12 @@ int run_bench(const BenchArgs& a) {
   results.manifest = a.manifest;
   results.rules = rules;
   results.jobs = a.jobs;
+  // Each run's threads (`mesh --threads`): by default the hardware threads shared out over
+  // the runs at a time, so that concurrent runs do not compete for cores (the mesh does not
+  // depend on it; the timings do).
+  const std::size_t hardware = std::max(1U, std::thread::hardware_concurrency());
+  results.threads = a.threads > 0 ? static_cast<std::size_t>(a.threads)
+                                  : std::max<std::size_t>(1, hardware / a.jobs);
   for (std::size_t i = 0; i < manifest.entries.size(); ++i) {
     for (const std::string& r : rules) {
       const std::string stem = manifest.entries[i].file_stem + "." + r;
@@ -385,10 +393,10 @@ int run_bench(const BenchArgs& a) {
         pid = spawn_probe(manifest.entries[job.entry], job, a.memory_mb);
       } else {
         fs::remove(job.mesh, ec);
-        pid = spawn_exec(
-            {"stcweave", "mesh", manifest.entries[job.entry].input.string(), "-o",
-             job.mesh.string(), "--report", job.report.string(), "-q", "--rules", job.rules},
-            job.log, a.memory_mb);
+        pid = spawn_exec({"stcweave", "mesh", manifest.entries[job.entry].input.string(), "-o",
+                          job.mesh.string(), "--report", job.report.string(), "-q", "--rules",
+                          job.rules, "--threads", std::to_string(results.threads)},
+                         job.log, a.memory_mb);
       }
       if (pid < 0) {
         const std::string why = std::string("cannot start a process: ") + std::strerror(errno);
@@ -513,6 +521,11 @@ Action add_bench_command(CLI::App& app) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   sub->add_option("--memory", args->memory_mb, "address-space limit per run, in MB (0: no limit)")
+      ->capture_default_str();
+  sub->add_option("--threads", args->threads,
+                  "threads per run (passed to mesh --threads; 0: the hardware threads divided "
+                  "by --jobs, at least 1)")
+      ->check(CLI::Range(0, 256))
       ->capture_default_str();
   sub->add_flag("-q,--quiet", args->quiet, "no progress lines, no summary");
   return [args] { return run_bench(*args); };

@@ -502,7 +502,10 @@ std::string format_markdown(const BenchResults& results) {
   std::ostringstream out;
   out << "# stcweave bench: " << md_escape(results.manifest) << "\n\n";
   out << results.rows.size() << " runs (" << results.jobs << (results.jobs == 1 ? " job" : " jobs")
-      << " at a time, " << number(results.wall_seconds, "%.1f") << " s wall time).\n\n";
+      << " at a time, ";
+  if (results.threads > 0)
+    out << results.threads << (results.threads == 1 ? " thread" : " threads") << " each, ";
+  out << number(results.wall_seconds, "%.1f") << " s wall time).\n\n";
 
   // Summary per rule set.
   const std::array<RunStatus, 5> failures = {RunStatus::Rejected, RunStatus::Failed,
@@ -634,6 +637,7 @@ nlohmann::json to_json(const BenchResults& results) {
   j["manifest"] = results.manifest;
   j["rules"] = results.rules;
   j["jobs"] = results.jobs;
+  j["threads"] = results.threads;
   j["wall_seconds"] = results.wall_seconds;
   nlohmann::json rows = nlohmann::json::array();
   for (const BenchRow& r : results.rows) {

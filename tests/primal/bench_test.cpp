@@ -21,6 +21,7 @@ using namespace stcweave;
 using primal::BenchRow;
 using primal::RunStatus;
 using ::testing::HasSubstr;
+using ::testing::Not;
 namespace fs = std::filesystem;
 
 primal::Manifest parse(const std::string& text, const fs::path& path = "/corpus/bench/m.txt") {
@@ -328,6 +329,10 @@ TEST(Markdown, PageHasSummarySideBySideStagesAndScaling) {
   primal::fit_scaling(results);
   const std::string md = primal::format_markdown(results);
   EXPECT_THAT(md, HasSubstr("# stcweave bench: bench/generated.manifest"));
+  EXPECT_THAT(md, HasSubstr(" runs (2 jobs at a time, "));
+  EXPECT_THAT(md, Not(HasSubstr("each,")));  // threads per run not said
+  results.threads = 1;
+  EXPECT_THAT(primal::format_markdown(results), HasSubstr("(2 jobs at a time, 1 thread each, "));
   EXPECT_THAT(md, HasSubstr("| reliable | 3 | 3 | 3 | 3 | 0 | 0 | 0 | 0 | 0 | 0 |"));
   EXPECT_THAT(md, HasSubstr("| extended | 3 | 2 | 2 | 2 | 0 | 0 | 0 | 1 | 0 | 0 |"));
   EXPECT_THAT(md, HasSubstr("## Side by side"));

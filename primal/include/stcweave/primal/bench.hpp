@@ -204,6 +204,8 @@ struct BenchResults {
   std::vector<ScalingFit> scaling;
   double wall_seconds = 0.0;  ///< of the whole run
   std::size_t jobs = 1;
+  /// Threads each run was given (`mesh --threads`; 0: not said).
+  std::size_t threads = 0;
 };
 
 /// Fills `results.scaling` from its rows (one fit per rule set and stage that has one).
