@@ -330,7 +330,6 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
     if (!r.validation.valid && !options.keep_invalid) stc::require_valid(r.validation);
   };
   if (!side_by_side) act_on_validation();  // done already: an invalid complex stops here
-  r.seconds.validate = checking.seconds();
 
   stage("recover");
   std::exception_ptr recover_error;
@@ -347,10 +346,9 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
     recover_error = std::current_exception();
   }
   r.seconds.recover = recover_clock.lap();
-  if (side_by_side) {
-    act_on_validation();
-    r.seconds.validate = checking.seconds();
-  }
+  if (side_by_side) act_on_validation();
+  // Read once the task is over (`get` waited for it).
+  r.seconds.validate = checking.seconds();
   const double validate_and_recover = clock.lap();
   if (side_by_side) {
     r.seconds.overlap =

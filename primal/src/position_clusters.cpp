@@ -170,6 +170,84 @@ SubMesh sub_mesh(const HexMesh& mesh, const std::vector<bool>& fixed, const Node
   return s;
 }
 
+/// The hexes of `mesh` with a scaled Jacobian <= 0, in increasing order.
+std::vector<std::size_t> inverted_hexes(const HexMesh& mesh) {
+  std::vector<std::size_t> out;
+  for (std::size_t h = 0; h < mesh.complex.hexes.size(); ++h)
+    if (hex_scaled_jacobian(mesh.points, mesh.complex.hexes[h]) <= 0.0) out.push_back(h);
+  return out;
+}
+
+/// Whether the sub-meshes' work has reached `cluster_max_work` (0: no bound).
+bool work_spent(const PositionOptions& options, const ClusterReport& report) {
+  return options.cluster_max_work > 0 && report.work >= options.cluster_max_work;
+}
+
+/// The L-BFGS iterations a sub-mesh of `hexes` hexes may use: what the work bound leaves (at
+/// least 1), and at most `max_total_iterations` when that is set; with neither bound, the
+/// largest value (no bound).
+std::size_t iterations_left(const PositionOptions& options, const ClusterReport& report,
+                            std::size_t hexes) {
+  std::size_t left = std::numeric_limits<std::size_t>::max();
+  if (options.cluster_max_work > 0) {
+    left = std::max<std::size_t>(
+        1, (options.cluster_max_work - report.work) / std::max<std::size_t>(1, hexes));
+  }
+  if (options.max_total_iterations > 0)
+    left = std::min(left, static_cast<std::size_t>(options.max_total_iterations));
+  return left;
+}
+
+/// A cluster's widest sub-mesh, over which its tries are judged (its hexes are all the hexes
+/// any try can change): fewest inverted hexes, then the largest worst scaled Jacobian. The
+/// best positions so far are kept, and written back only when they beat the start.
+class WidestSubMesh {
+ public:
+  WidestSubMesh(const HexMesh& mesh, const std::vector<bool>& fixed, const NodeHexes& node_hexes,
+                const std::vector<std::size_t>& hexes)
+      : wide_(sub_mesh(mesh, fixed, node_hexes, hexes, false)),
+        all_(wide_.mesh.complex.hexes.size()) {
+    for (std::size_t k = 0; k < all_.size(); ++k) all_[k] = k;
+    for (std::size_t v = 0; v < wide_.node_of.size(); ++v)
+      local_.emplace(wide_.node_of[v].value(), v);
+    at_start_ = best_ = tally(wide_.mesh.points, wide_.mesh.complex.hexes, all_);
+  }
+
+  [[nodiscard]] const Tally& at_start() const { return at_start_; }
+  [[nodiscard]] const Tally& best() const { return best_; }
+
+  /// Judges the positions `sub` (a sub-mesh of this one) gives its nodes; kept when better
+  /// than the best so far.
+  void judge(const SubMesh& sub) {
+    Points trial = wide_.mesh.points;
+    for (std::size_t v = 0; v < sub.node_of.size(); ++v) {
+      trial.row(static_cast<Eigen::Index>(local_.at(sub.node_of[v].value()))) =
+          sub.mesh.points.row(static_cast<Eigen::Index>(v));
+    }
+    const Tally tried = tally(trial, wide_.mesh.complex.hexes, all_);
+    if (better(tried, best_)) {
+      best_ = tried;
+      best_points_ = std::move(trial);
+    }
+  }
+
+  /// Writes the best positions into `mesh` when they beat the start: true then.
+  bool keep_best(HexMesh& mesh) const {
+    if (!better(best_, at_start_)) return false;
+    for (std::size_t v = 0; v < wide_.node_of.size(); ++v)
+      mesh.points.row(wide_.node_of[v].value()) = best_points_.row(static_cast<Eigen::Index>(v));
+    return true;
+  }
+
+ private:
+  SubMesh wide_;
+  std::vector<std::size_t> all_;
+  std::map<std::int32_t, std::size_t> local_;
+  Tally at_start_;
+  Tally best_;
+  Points best_points_;
+};
+
 /// The hinge phase: for each cluster still inverted, the hinge untangling
 /// (position_hinge.hpp) of the free nodes of the cluster grown by 1 .. `cluster_max_rings`
 /// rings (the sub-mesh of one ring more, its outer nodes held, so every hex they touch is
@@ -186,56 +264,28 @@ void hinge_phase(HexMesh& mesh, const std::vector<bool>& fixed, const NodeHexes&
   for (std::size_t c = 0; c < clusters.size() && !work_bound; ++c) {
     const std::vector<std::vector<std::size_t>> layers =
         grown(clusters[c], options.cluster_max_rings + 1, hexes, node_hexes, mark);
-    const Tally at_start = tally(mesh.points, hexes, layers.back());
-    if (at_start.inverted == 0) continue;
+    WidestSubMesh wide(mesh, fixed, node_hexes, layers.back());
+    if (wide.at_start().inverted == 0) continue;
     ++report.hinge_clusters;
-    Tally best = at_start;
-    std::vector<std::pair<std::int32_t, Eigen::RowVector3d>> best_moves;
-    for (int rings = 1; rings <= options.cluster_max_rings && best.inverted > 0 && !work_bound;
-         ++rings) {
+    for (int rings = 1;
+         rings <= options.cluster_max_rings && wide.best().inverted > 0 && !work_bound; ++rings) {
       const std::vector<std::size_t>& hexes_in = layers[static_cast<std::size_t>(rings) + 1];
       if (hexes_in.size() > options.cluster_max_hexes) break;
       for (const double beta : {0.02, 0.05}) {
-        if (best.inverted == 0) break;
-        if (options.cluster_max_work > 0 && report.work >= options.cluster_max_work) {
+        if (wide.best().inverted == 0) break;
+        if (work_spent(options, report)) {
           work_bound = true;
           break;
         }
-        // At most what the work bound leaves and the caller's total iteration bound.
-        std::size_t cap =
-            options.cluster_max_work == 0
-                ? std::numeric_limits<std::size_t>::max()
-                : std::max<std::size_t>(1, (options.cluster_max_work - report.work) /
-                                               std::max<std::size_t>(1, hexes_in.size()));
-        if (options.max_total_iterations > 0)
-          cap = std::min(cap, static_cast<std::size_t>(options.max_total_iterations));
         SubMesh sub = sub_mesh(mesh, fixed, node_hexes, hexes_in, true);
-        const HingeOutcome run = hinge_untangle(sub.mesh, sub.fixed, beta, cap);
+        const HingeOutcome run = hinge_untangle(sub.mesh, sub.fixed, beta,
+                                                iterations_left(options, report, hexes_in.size()));
         ++report.hinge_tries;
         report.work += hexes_in.size() * std::max<std::size_t>(1, run.iterations);
-        // Judged over the widest sub-mesh's hexes, with the moved nodes put in place.
-        std::vector<std::pair<std::int32_t, Eigen::RowVector3d>> moves;
-        for (std::size_t v = 0; v < sub.node_of.size(); ++v) {
-          if (!sub.fixed[v])
-            moves.emplace_back(sub.node_of[v].value(),
-                               sub.mesh.points.row(static_cast<Eigen::Index>(v)));
-        }
-        std::vector<std::pair<std::int32_t, Eigen::RowVector3d>> undo;
-        undo.reserve(moves.size());
-        for (const auto& [v, at] : moves) {
-          undo.emplace_back(v, mesh.points.row(v));
-          mesh.points.row(v) = at;
-        }
-        const Tally tried = tally(mesh.points, hexes, layers.back());
-        for (const auto& [v, at] : undo) mesh.points.row(v) = at;
-        if (better(tried, best)) {
-          best = tried;
-          best_moves = std::move(moves);
-        }
+        wide.judge(sub);
       }
     }
-    if (better(best, at_start)) {
-      for (const auto& [v, at] : best_moves) mesh.points.row(v) = at;
+    if (wide.keep_best(mesh)) {
       ++report.hinge_accepted;
       ++report.accepted;
     }
@@ -245,14 +295,11 @@ void hinge_phase(HexMesh& mesh, const std::vector<bool>& fixed, const NodeHexes&
       p.step = c + 1;
       p.limit = clusters.size();
       p.pass = report.passes + 1;
-      p.inverted = inverted.size() - at_start.inverted + best.inverted;
+      p.inverted = inverted.size() - wide.at_start().inverted + wide.best().inverted;
       options.progress(p);
     }
   }
-  std::vector<std::size_t> left;
-  for (std::size_t h = 0; h < hexes.size(); ++h)
-    if (hex_scaled_jacobian(mesh.points, hexes[h]) <= 0.0) left.push_back(h);
-  inverted = std::move(left);
+  inverted = inverted_hexes(mesh);
   report.inverted_after = inverted.size();
   if (inverted.empty()) {
     report.stop = "untangled by the hinge phase";
@@ -283,13 +330,7 @@ ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
     }
   }
   const NodeHexes node_hexes = primal::node_hexes(hexes, num_nodes);
-  const auto inverted_hexes = [&]() {
-    std::vector<std::size_t> out;
-    for (std::size_t h = 0; h < hexes.size(); ++h)
-      if (hex_scaled_jacobian(mesh.points, hexes[h]) <= 0.0) out.push_back(h);
-    return out;
-  };
-  std::vector<std::size_t> inverted = inverted_hexes();
+  std::vector<std::size_t> inverted = inverted_hexes(mesh);
   report.inverted_before = report.inverted_after = inverted.size();
   if (options.cluster_passes <= 0) {
     report.stop = "off";
@@ -314,13 +355,10 @@ ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
   // the caller did not ask for one thread; the result is the sequential order's either way.
   const bool speculate = options.threads != 1 && std::thread::hardware_concurrency() > 1;
   report.stop = "pass limit";
-  const auto spent = [&]() {
-    return options.cluster_max_work > 0 && report.work >= options.cluster_max_work;
-  };
   std::vector<char> mark(hexes.size(), 0);
   bool work_bound = false;
   for (int pass = 0; pass < options.cluster_passes; ++pass) {
-    if (spent()) {
+    if (work_spent(options, report)) {
       work_bound = true;
       break;
     }
@@ -333,36 +371,22 @@ ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
       // the hexes of that one (all the hexes any of them can change), and the best kept.
       const std::vector<std::vector<std::size_t>> layers =
           grown(clusters[c], options.cluster_max_rings, hexes, node_hexes, mark);
-      SubMesh wide = sub_mesh(mesh, fixed, node_hexes, layers.back(), false);
-      const std::vector<std::size_t> all_wide = [&]() {
-        std::vector<std::size_t> ids(wide.mesh.complex.hexes.size());
-        for (std::size_t k = 0; k < ids.size(); ++k) ids[k] = k;
-        return ids;
-      }();
-      const Tally at_start = tally(wide.mesh.points, wide.mesh.complex.hexes, all_wide);
-      if (at_start.inverted == 0) continue;  // an earlier cluster's sub-mesh untangled it
+      WidestSubMesh wide(mesh, fixed, node_hexes, layers.back());
+      // An earlier cluster's sub-mesh may have untangled it.
+      if (wide.at_start().inverted == 0) continue;
       ++report.clusters;
-      std::map<std::int32_t, std::size_t> wide_local;
-      for (std::size_t v = 0; v < wide.node_of.size(); ++v)
-        wide_local.emplace(wide.node_of[v].value(), v);
-      Tally best = at_start;
-      Points best_points;
       // In order, and no further once a sub-mesh leaves none of them inverted.
-      for (int rings = 1; rings <= options.cluster_max_rings && best.inverted > 0 && !work_bound;
-           ++rings) {
+      for (int rings = 1;
+           rings <= options.cluster_max_rings && wide.best().inverted > 0 && !work_bound; ++rings) {
         const std::vector<std::size_t>& hexes_in = layers[static_cast<std::size_t>(rings)];
         if (hexes_in.size() > options.cluster_max_hexes) break;
         const SubMesh base = sub_mesh(mesh, fixed, node_hexes, hexes_in, true);
-        // The iteration cap of a sub-mesh's untangling: what is left of the work bound.
+        // The iteration cap of a sub-mesh's untangling (0: none, as `max_total_iterations`).
         const auto cap_now = [&]() -> int {
-          if (options.cluster_max_work == 0) return options.max_total_iterations;
-          const std::size_t left =
-              (options.cluster_max_work - report.work) / std::max<std::size_t>(1, hexes_in.size());
-          const auto cap = static_cast<int>(
-              std::min<std::size_t>(std::max<std::size_t>(1, left),
-                                    static_cast<std::size_t>(std::numeric_limits<int>::max())));
-          return options.max_total_iterations > 0 ? std::min(options.max_total_iterations, cap)
-                                                  : cap;
+          const std::size_t left = iterations_left(options, report, hexes_in.size());
+          if (left == std::numeric_limits<std::size_t>::max()) return 0;
+          return static_cast<int>(std::min<std::size_t>(
+              left, static_cast<std::size_t>(std::numeric_limits<int>::max())));
         };
         const auto run = [&](StartPosition start, int cap) {
           Try t;
@@ -389,8 +413,8 @@ ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
         // stopped below the cap the sequential order gives it, and run again otherwise.
         std::optional<Try> harmonic;
         for (const StartPosition start : {StartPosition::Keep, StartPosition::Harmonic}) {
-          if (best.inverted == 0) break;
-          if (spent()) {
+          if (wide.best().inverted == 0) break;
+          if (work_spent(options, report)) {
             work_bound = true;
             break;
           }
@@ -425,23 +449,12 @@ ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
           ++report.sub_problems;
           if (!t.ok) continue;
           report.work += t.sub.mesh.complex.hexes.size() * std::max<std::size_t>(1, t.iterations);
-          Points trial = wide.mesh.points;
-          for (std::size_t v = 0; v < t.sub.node_of.size(); ++v) {
-            trial.row(static_cast<Eigen::Index>(wide_local.at(t.sub.node_of[v].value()))) =
-                t.sub.mesh.points.row(static_cast<Eigen::Index>(v));
-          }
-          const Tally tried = tally(trial, wide.mesh.complex.hexes, all_wide);
-          if (better(tried, best)) {
-            best = tried;
-            best_points = std::move(trial);
-          }
+          wide.judge(t.sub);
         }
       }
-      if (better(best, at_start)) {
-        for (std::size_t v = 0; v < wide.node_of.size(); ++v)
-          mesh.points.row(wide.node_of[v].value()) = best_points.row(static_cast<Eigen::Index>(v));
+      if (wide.keep_best(mesh)) {
         ++report.accepted;
-        inverted_now = inverted_now - at_start.inverted + best.inverted;
+        inverted_now = inverted_now - wide.at_start().inverted + wide.best().inverted;
       }
       if (options.progress) {
         PositionProgress p;
@@ -453,7 +466,7 @@ ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
         options.progress(p);
       }
     }
-    inverted = inverted_hexes();
+    inverted = inverted_hexes(mesh);
     report.inverted_after = inverted.size();
     if (inverted.empty()) {
       report.stop = "untangled";

@@ -85,8 +85,7 @@ HingeOutcome hinge_untangle(HexMesh& mesh, const std::vector<bool>& fixed, doubl
         terms.push_back({static_cast<std::uint32_t>(h), k});
     }
     terms.push_back({static_cast<std::uint32_t>(h), 8});
-    for (std::size_t k = 0; k < 8; ++k) {  // the three edges at corners 0, 2, 5, 7: all 12
-      if (k != 0 && k != 2 && k != 5 && k != 7) continue;
+    for (const std::size_t k : {0, 2, 5, 7}) {  // the three edges at these corners: all 12
       const auto& c = kHexCorners[k];
       for (std::size_t l = 1; l < 4; ++l) {
         edge_sum += (mesh.points.row(x[static_cast<std::size_t>(c[l])].value()) -
