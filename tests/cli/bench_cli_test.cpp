@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "support/cli_run.hpp"
 
@@ -50,6 +51,9 @@ TEST_F(BenchCli, EveryInputIsARowFailuresIncluded) {
     EXPECT_TRUE(fs::exists(dir_ / "out" / f)) << f;
 
   const auto j = results();
+  // Each run's threads: the hardware threads divided by --jobs, at least 1.
+  const std::size_t hardware = std::max(1U, std::thread::hardware_concurrency());
+  EXPECT_EQ(j.at("threads").get<std::size_t>(), std::max<std::size_t>(1, hardware / 2));
   const auto& rows = j.at("rows");
   ASSERT_EQ(rows.size(), 4U);
   // Manifest order, whatever finished first.
@@ -89,6 +93,9 @@ TEST_F(BenchCli, RuleSetsSideBySideAndGeneratedShapesWithTheirReference) {
                        (dir_ / "out").string() + " --rules reliable,extended -q");
   ASSERT_EQ(r.code, 0) << r.out;
   const auto j = results();
+  // One run at a time: each gets every hardware thread.
+  EXPECT_EQ(j.at("threads").get<std::size_t>(),
+            std::max<std::size_t>(1, std::thread::hardware_concurrency()));
   const auto& rows = j.at("rows");
   ASSERT_EQ(rows.size(), 4U);
   EXPECT_EQ(rows[0]["input"], "box:2x2x2");
@@ -150,6 +157,8 @@ TEST_F(BenchCli, BadManifestOrOptionsFailBeforeAnythingRuns) {
   EXPECT_EQ(rules.code, 2);
   EXPECT_THAT(rules.out, HasSubstr("magic"));
   EXPECT_EQ(run(ok + " --jobs 0").code, 1);
+  EXPECT_EQ(run(ok + " --threads -1").code, 1);
+  EXPECT_EQ(run(ok + " --threads 257").code, 1);
   EXPECT_EQ(run(ok + " --timeout -3").code, 1);
   EXPECT_EQ(run(ok + " --frobnicate").code, 1);
   EXPECT_FALSE(fs::exists(dir_ / "out" / "results.json"));
