@@ -56,6 +56,7 @@ struct MeshArgs {
   bool no_cluster_hinge = false;
   int threads = primal::PositionOptions{}.threads;
   double shape_target = primal::PositionOptions{}.shape_target;
+  double shape_hinges_below = primal::PositionOptions{}.hinge_shape_below;
   double good_start = primal::PositionOptions{}.good_start;
   int certify_depth = 4;
   CadArgs cad;  // CAD input: --size, --cad-recipe, --surface-out
@@ -187,7 +188,16 @@ nlohmann::json position_json(const primal::PositionReport& p) {
               {"min_corner_after", p.shape.barrier.min_corner_after},
               {"min_scaled_jacobian_before", p.shape.barrier.min_scaled_jacobian_before},
               {"min_scaled_jacobian_after", p.shape.barrier.min_scaled_jacobian_after},
-              {"stop", p.shape.barrier.stop}}}}},
+              {"stop", p.shape.barrier.stop}}},
+            {"hinge",
+             {{"ran", p.shape.hinge.ran},
+              {"seeds", p.shape.hinge.seeds},
+              {"tries", p.shape.hinge.tries},
+              {"accepted", p.shape.hinge.accepted},
+              {"work", p.shape.hinge.work},
+              {"min_scaled_jacobian_before", p.shape.hinge.min_scaled_jacobian_before},
+              {"min_scaled_jacobian_after", p.shape.hinge.min_scaled_jacobian_after},
+              {"stop", p.shape.hinge.stop}}}}},
           {"seconds", p.seconds}};
 }
 
@@ -269,6 +279,7 @@ int run_mesh(const MeshArgs& a) {
   options.position.threads = a.threads;
   options.build_stc = true;  // the report's sheets and chords, the cell data
   options.position.shape_target = a.shape_target;
+  options.position.hinge_shape_below = a.shape_hinges_below;
   options.position.good_start = a.good_start;
   options.position.newton_after = a.position_newton_after;
   options.position.precondition = a.position_precondition;
@@ -567,7 +578,14 @@ int run_mesh(const MeshArgs& a) {
                 << r.position.min_scaled_jacobian_after << " after the shape phase (mean "
                 << r.position.mean_scaled_jacobian_before << ", "
                 << r.position.mean_scaled_jacobian_untangled << ", "
-                << r.position.mean_scaled_jacobian_after << "; " << r.position.shape.stop << ")\n";
+                << r.position.mean_scaled_jacobian_after << "; " << r.position.shape.stop;
+      const primal::HingeShapeReport& hinge = r.position.shape.hinge;
+      if (hinge.ran) {
+        std::cout << "; hinges: " << hinge.accepted << " of " << hinge.seeds
+                  << " worst hexes raised, " << hinge.min_scaled_jacobian_before << " -> "
+                  << hinge.min_scaled_jacobian_after << ", " << hinge.stop;
+      }
+      std::cout << ")\n";
     }
     std::cout << "time       " << r.seconds.total() + write_seconds << " s (weave "
               << r.seconds.weave << " s)\n";
@@ -768,6 +786,13 @@ Action add_mesh_command(CLI::App& app) {
       ->check(CLI::Range(0, 100000));
   sub->add_option("--shape-target", args->shape_target,
                   "shape phase: hexes below this scaled Jacobian are worked on")
+      ->check(kFinite)
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  sub->add_option("--shape-hinges-below", args->shape_hinges_below,
+                  "shape phase, last pass: hexes still below this scaled Jacobian are raised by "
+                  "hinges over small sub-meshes around them, worst first (0: off; "
+                  "docs/geometry.md \"Shape phase\")")
       ->check(kFinite)
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));

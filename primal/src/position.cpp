@@ -1518,6 +1518,17 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
   report.shape = nothing_below_target(mesh, fixed, options);
   if (report.shape.stop.empty()) report.shape = improve_shape(mesh, fixed, options);
   if (report.shape.moves > 0 || report.shape.barrier.ran) after = summarize_quality(mesh, 0);
+  if (after.inverted == 0 && report.free_nodes > 0 && options.hinge_shape_below > 0.0 &&
+      after.min_scaled_jacobian < options.hinge_shape_below) {
+    report.shape.hinge = raise_worst_by_hinges(mesh, fixed, options);
+    if (report.shape.hinge.accepted > 0) {
+      after = summarize_quality(mesh, 0);
+      report.shape.min_scaled_jacobian_after = after.min_scaled_jacobian;
+      report.shape.mean_scaled_jacobian_after = after.mean_scaled_jacobian;
+    }
+  } else {
+    report.shape.hinge.stop = options.hinge_shape_below > 0.0 ? "nothing below" : "off";
+  }
   report.inverted_after = after.inverted;
   report.min_scaled_jacobian_after = after.min_scaled_jacobian;
   report.mean_scaled_jacobian_after = after.mean_scaled_jacobian;

@@ -248,6 +248,72 @@ class WidestSubMesh {
   Points best_points_;
 };
 
+/// The shape pass's judge (`raise_worst_by_hinges`): the scaled Jacobians of the widest
+/// sub-mesh's hexes, sorted; a try is better when, at the first place where the two sorted
+/// lists differ, its value is larger by at least `kLeximinStep` (so raising a hex next to a
+/// worse one that no try can move still counts, and no hex drops below the ones before it).
+constexpr double kLeximinStep = 1e-4;
+
+class LeximinSubMesh {
+ public:
+  LeximinSubMesh(const HexMesh& mesh, const std::vector<bool>& fixed, const NodeHexes& node_hexes,
+                 const std::vector<std::size_t>& hexes)
+      : wide_(sub_mesh(mesh, fixed, node_hexes, hexes, false)) {
+    for (std::size_t v = 0; v < wide_.node_of.size(); ++v)
+      local_.emplace(wide_.node_of[v].value(), v);
+    start_ = best_ = sorted_quality(wide_.mesh.points);
+  }
+
+  /// Judges the positions `sub` (a sub-mesh of this one) gives its nodes.
+  void judge(const SubMesh& sub) {
+    Points trial = wide_.mesh.points;
+    for (std::size_t v = 0; v < sub.node_of.size(); ++v) {
+      trial.row(static_cast<Eigen::Index>(local_.at(sub.node_of[v].value()))) =
+          sub.mesh.points.row(static_cast<Eigen::Index>(v));
+    }
+    std::vector<double> tried = sorted_quality(trial);
+    if (better(tried, best_)) {
+      best_ = std::move(tried);
+      best_points_ = std::move(trial);
+    }
+  }
+
+  /// Whether a try judged so far beats the start.
+  [[nodiscard]] bool improved() const { return better(best_, start_); }
+  /// The worst scaled Jacobian of the best positions so far.
+  [[nodiscard]] double worst() const { return best_.empty() ? 1.0 : best_.front(); }
+
+  /// Writes the best positions into `mesh` when they beat the start: true then.
+  bool keep_best(HexMesh& mesh) const {
+    if (!better(best_, start_)) return false;
+    for (std::size_t v = 0; v < wide_.node_of.size(); ++v)
+      mesh.points.row(wide_.node_of[v].value()) = best_points_.row(static_cast<Eigen::Index>(v));
+    return true;
+  }
+
+ private:
+  [[nodiscard]] std::vector<double> sorted_quality(const Points& points) const {
+    std::vector<double> q;
+    q.reserve(wide_.mesh.complex.hexes.size());
+    for (const stc::Hex& h : wide_.mesh.complex.hexes) q.push_back(hex_scaled_jacobian(points, h));
+    std::sort(q.begin(), q.end());
+    return q;
+  }
+  static bool better(const std::vector<double>& a, const std::vector<double>& b) {
+    for (std::size_t k = 0; k < a.size() && k < b.size(); ++k) {
+      if (a[k] == b[k]) continue;
+      return a[k] >= b[k] + kLeximinStep;
+    }
+    return false;
+  }
+
+  SubMesh wide_;
+  std::map<std::int32_t, std::size_t> local_;
+  std::vector<double> start_;
+  std::vector<double> best_;
+  Points best_points_;
+};
+
 /// The hinge phase: for each cluster still inverted, the hinge untangling
 /// (position_hinge.hpp) of the free nodes of the cluster grown by 1 .. `cluster_max_rings`
 /// rings (the sub-mesh of one ring more, its outer nodes held, so every hex they touch is
@@ -346,6 +412,7 @@ ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
   PositionOptions sub_options = options;
   sub_options.cluster_passes = 0;
   sub_options.max_shape_sweeps = 0;
+  sub_options.hinge_shape_below = 0.0;
   sub_options.barrier_rounds = 0;
   sub_options.certify_depth = 0;
   sub_options.num_fixed = 0;
@@ -484,6 +551,111 @@ ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
   }
   if (options.cluster_hinge) hinge_phase(mesh, fixed, node_hexes, options, inverted, report);
   return report;
+}
+
+HingeShapeReport raise_worst_by_hinges(HexMesh& mesh, const std::vector<bool>& fixed,
+                                       const PositionOptions& options) {
+  HingeShapeReport report;
+  const std::vector<stc::Hex>& hexes = mesh.complex.hexes;
+  const auto num_nodes = static_cast<std::size_t>(mesh.points.rows());
+  if (fixed.size() != num_nodes) {
+    throw InvalidInput("raise_worst_by_hinges: the fixed mask has " + std::to_string(fixed.size()) +
+                       " entries for " + std::to_string(num_nodes) + " nodes");
+  }
+  for (std::size_t h = 0; h < hexes.size(); ++h) {
+    for (const NodeId v : hexes[h]) {
+      if (!v.is_valid() || v.index() >= num_nodes) {
+        throw InvalidInput("raise_worst_by_hinges: hex h" + std::to_string(h) + " names node " +
+                           v.str() + " out of range (" + std::to_string(num_nodes) + " nodes)");
+      }
+    }
+  }
+  if (!(options.hinge_shape_below > 0.0)) {
+    report.stop = "off";
+    return report;
+  }
+  // Hexes of fixed nodes only cannot change; a hex whose try was not kept is not tried again.
+  std::vector<char> skip(hexes.size(), 0);
+  for (std::size_t h = 0; h < hexes.size(); ++h) {
+    skip[h] =
+        std::all_of(hexes[h].begin(), hexes[h].end(), [&](NodeId v) { return fixed[v.index()]; })
+            ? 1
+            : 0;
+  }
+  const NodeHexes node_hexes = primal::node_hexes(hexes, num_nodes);
+  const auto spent = [&] {
+    return options.hinge_shape_max_work > 0 && report.work >= options.hinge_shape_max_work;
+  };
+  std::vector<char> mark(hexes.size(), 0);
+  // Every hex's scaled Jacobian, brought up to date where a kept try moved nodes.
+  std::vector<double> sj(hexes.size());
+  for (std::size_t h = 0; h < hexes.size(); ++h) sj[h] = hex_scaled_jacobian(mesh.points, hexes[h]);
+  bool first = true;
+  for (;;) {
+    // The worst hex (ties: the smallest id) and the mesh's minimum.
+    double worst = std::numeric_limits<double>::infinity();
+    double worst_open = worst;
+    std::size_t seed = kUnset;
+    for (std::size_t h = 0; h < hexes.size(); ++h) {
+      worst = std::min(worst, sj[h]);
+      if (skip[h] == 0 && sj[h] < worst_open) {
+        worst_open = sj[h];
+        seed = h;
+      }
+    }
+    if (first) report.min_scaled_jacobian_before = worst;
+    report.min_scaled_jacobian_after = worst;
+    if (worst <= 0.0) {
+      report.stop = "inverted hexes: skipped";
+      return report;
+    }
+    if (seed == kUnset || !(worst_open < options.hinge_shape_below)) {
+      report.stop = first ? "nothing below" : "done";
+      return report;
+    }
+    first = false;
+    if (spent()) {
+      report.stop = "work bound";
+      return report;
+    }
+    report.ran = true;
+    const std::vector<std::vector<std::size_t>> layers =
+        grown({seed}, options.cluster_max_rings + 1, hexes, node_hexes, mark);
+    LeximinSubMesh wide(mesh, fixed, node_hexes, layers.back());
+    ++report.seeds;
+    // Rings in order, until a try is better than the start.
+    for (int rings = 1; rings <= options.cluster_max_rings && !spent() && !wide.improved();
+         ++rings) {
+      const std::vector<std::size_t>& hexes_in = layers[static_cast<std::size_t>(rings) + 1];
+      if (hexes_in.size() > options.cluster_max_hexes) break;
+      // Pull up the corners below 1.5 times the worst hex there (at least 0.0075), the
+      // smoothing starting at beta (only those corners pull) or, when that is not better, at
+      // 0.1 (every corner nearby pulls at first).
+      const double beta = 1.5 * std::max(0.005, wide.worst());
+      for (const double first_delta : {beta, 0.1}) {
+        if (spent() || wide.improved()) break;
+        SubMesh sub = sub_mesh(mesh, fixed, node_hexes, hexes_in, true);
+        std::size_t cap = options.hinge_shape_iterations;
+        if (options.hinge_shape_max_work > 0) {
+          cap =
+              std::min(cap, std::max<std::size_t>(
+                                1, (options.hinge_shape_max_work - report.work) / hexes_in.size()));
+        }
+        const HingeOutcome run = hinge_untangle(sub.mesh, sub.fixed, beta, cap, first_delta);
+        ++report.tries;
+        report.work += hexes_in.size() * std::max<std::size_t>(1, run.iterations);
+        wide.judge(sub);
+      }
+    }
+    if (wide.keep_best(mesh)) {
+      ++report.accepted;
+      // Only the nodes of the widest sub-mesh's inner hexes moved: its hexes are all that
+      // changed.
+      for (const std::size_t h : layers.back()) sj[h] = hex_scaled_jacobian(mesh.points, hexes[h]);
+    } else {
+      skip[seed] = 1;
+    }
+  }
 }
 
 }  // namespace stcweave::primal

@@ -60,7 +60,7 @@ struct Term {
 }  // namespace
 
 HingeOutcome hinge_untangle(HexMesh& mesh, const std::vector<bool>& fixed, double beta,
-                            std::size_t max_iterations) {
+                            std::size_t max_iterations, double first_delta) {
   HingeOutcome out;
   const auto num_nodes = static_cast<std::size_t>(mesh.points.rows());
   std::vector<std::int32_t> slot(num_nodes, -1);
@@ -162,7 +162,7 @@ HingeOutcome hinge_untangle(HexMesh& mesh, const std::vector<bool>& fixed, doubl
   param.max_linesearch = 60;
   std::size_t left = max_iterations;
   Eigen::VectorXd grad(3 * n);
-  for (delta = 0.1; delta > 1e-6 && left > 0; delta *= 0.3) {
+  for (delta = first_delta; delta > 1e-6 && left > 0; delta *= 0.3) {
     param.max_iterations = static_cast<int>(std::min<std::size_t>(5000, left));
     LBFGSpp::LBFGSSolver<double, LBFGSpp::LineSearchBracketing> solver(param);
     const Eigen::VectorXd start = x;

@@ -18,7 +18,8 @@ struct HingeOutcome {
 
 /// Moves the free nodes of `mesh` (`fixed[v]` false) to lower
 ///   sum over terms t of  sqrt((q_t - beta)^2 + delta^2) - (q_t - beta),
-/// a smoothed 2 max(0, beta - q_t), for delta = 0.1, 0.03, ... down to 2e-6 (one L-BFGS run
+/// a smoothed 2 max(0, beta - q_t), for delta = `first_delta`, 0.3 times that, ... down to
+/// 1e-6 (one L-BFGS run
 /// each, from where the last ended). The terms are the 8 corners and the centre (principal
 /// axes, as `hex_scaled_jacobian` reads them) of every hex with a free node, a corner only
 /// when one of its four nodes is free; q is the mean-ratio measure of the corner's three
@@ -28,6 +29,6 @@ struct HingeOutcome {
 /// At most `max_iterations` L-BFGS iterations in all (each stage at most 5000). A stage whose
 /// line search fails keeps the better of its start and where it stopped. Deterministic.
 HingeOutcome hinge_untangle(HexMesh& mesh, const std::vector<bool>& fixed, double beta,
-                            std::size_t max_iterations);
+                            std::size_t max_iterations, double first_delta = 0.1);
 
 }  // namespace stcweave::primal

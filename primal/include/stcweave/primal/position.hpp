@@ -202,6 +202,15 @@ struct PositionOptions {
   /// hinges on a mean-ratio measure over each cluster's sub-meshes (see `untangle_clusters`;
   /// docs/geometry.md "Local untangling", the hinge phase); under the same work bound.
   bool cluster_hinge = true;
+  /// Shape phase, last pass (`raise_worst_by_hinges`): while a hex with a free node is below
+  /// this scaled Jacobian after the local moves and the barrier pass, the worst is raised by
+  /// hinges over a small sub-mesh around it; 0 switches the pass off.
+  double hinge_shape_below = 0.05;
+  /// That pass: no sub-mesh is started once its sub-meshes' hexes times their L-BFGS
+  /// iterations, summed, reach this (0: no bound).
+  std::size_t hinge_shape_max_work = 100000000;
+  /// That pass: at most this many L-BFGS iterations per sub-mesh.
+  std::size_t hinge_shape_iterations = 1000;
   /// Called after every untangling round, every repair or shape sweep and every cluster of
   /// the local untangling when set (see `PositionProgress`); the CLI's `--progress` prints it.
   std::function<void(const PositionProgress&)> progress;
@@ -244,6 +253,20 @@ BarrierReport raise_worst_corners(HexMesh& mesh, const std::vector<bool>& fixed,
                                   const PositionOptions& options);
 
 /// What `improve_shape` did.
+/// What `raise_worst_by_hinges` did.
+struct HingeShapeReport {
+  bool ran = false;          ///< some hex with a free node was below `hinge_shape_below`
+  std::size_t seeds = 0;     ///< worst hexes worked on (one may come back after a kept try)
+  std::size_t tries = 0;     ///< sub-meshes whose hinges were minimised
+  std::size_t accepted = 0;  ///< clusters whose best try was kept
+  std::size_t work = 0;      ///< the tries' hexes times their L-BFGS iterations, summed
+  double min_scaled_jacobian_before = 0.0;
+  double min_scaled_jacobian_after = 0.0;
+  /// "done", "work bound" (`hinge_shape_max_work`), "nothing below" (no hex below
+  /// `hinge_shape_below`), "inverted hexes: skipped", "off".
+  std::string stop;
+};
+
 struct ShapeReport {
   /// false when the mesh had inverted hexes, no free node, or (`position_nodes`) no hex below
   /// `shape_target` at the start
@@ -254,7 +277,8 @@ struct ShapeReport {
   double min_scaled_jacobian_after = 0.0;
   double mean_scaled_jacobian_before = 0.0;
   double mean_scaled_jacobian_after = 0.0;
-  BarrierReport barrier;  ///< the barrier pass of the order kept
+  BarrierReport barrier;   ///< the barrier pass of the order kept
+  HingeShapeReport hinge;  ///< the last pass, by hinges (`raise_worst_by_hinges`)
   /// Which order was kept: "barrier first" (barrier pass, local sweeps) or "local first"
   /// (local sweeps, barrier pass, local sweeps); empty when the barrier pass is off or when
   /// `position_nodes` found no hex below `shape_target` (nothing ran).
@@ -337,6 +361,23 @@ struct ClusterReport {
   /// left".
   std::string stop;
 };
+/// The shape phase's last pass, for the hexes the local moves and the barrier left below
+/// `hinge_shape_below` (slivers where moving one node, or a soft minimum, stalls). Repeatedly
+/// the worst hex with a free node (ties: smallest id) is the seed: the free nodes of the hexes
+/// within 1, then 2, ... `cluster_max_rings` rings of it are moved by `hinge_untangle` with
+/// beta = 1.5 times the worst scaled Jacobian around it (at least 0.0075), the smoothing
+/// starting at beta, then at 0.1, at most `hinge_shape_iterations` L-BFGS iterations each,
+/// until a try is better; the sub-mesh of one ring more is weighed, its outer nodes held. A try
+/// is better when the sorted scaled Jacobians of the widest sub-mesh (`cluster_max_rings` + 1
+/// rings) are larger at their first difference, by at least 1e-4 (leximin): the worst hex
+/// there never drops, none inverts, and a hex next to a worse one that cannot move may still
+/// rise. The best try is kept; a seed with none is not tried again. Ends when no hex with a
+/// free node is below the threshold or at `hinge_shape_max_work`. Runs nothing when a hex is
+/// inverted. Deterministic. docs/geometry.md "Hinge pass".
+/// \pre `fixed.size() == mesh.points.rows()` (checked: InvalidInput).
+HingeShapeReport raise_worst_by_hinges(HexMesh& mesh, const std::vector<bool>& fixed,
+                                       const PositionOptions& options);
+
 /// Local untangling of the hexes the untangling and the repair left inverted: the inverted
 /// hexes are grouped in clusters (hexes sharing a node), and each cluster grown by 1 ..
 /// `cluster_max_rings` rings is positioned on its own by `position_nodes`, its boundary nodes
