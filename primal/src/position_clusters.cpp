@@ -376,25 +376,33 @@ void hinge_phase(HexMesh& mesh, const std::vector<bool>& fixed, const NodeHexes&
   }
 }
 
+/// Refuses (InvalidInput, naming `who`) a fixed mask of the wrong size or a hex naming a node
+/// that `mesh` does not have.
+void check_arguments(const char* who, const HexMesh& mesh, const std::vector<bool>& fixed) {
+  const auto num_nodes = static_cast<std::size_t>(mesh.points.rows());
+  if (fixed.size() != num_nodes) {
+    throw InvalidInput(std::string(who) + ": the fixed mask has " + std::to_string(fixed.size()) +
+                       " entries for " + std::to_string(num_nodes) + " nodes");
+  }
+  const std::vector<stc::Hex>& hexes = mesh.complex.hexes;
+  for (std::size_t h = 0; h < hexes.size(); ++h) {
+    for (const NodeId v : hexes[h]) {
+      if (!v.is_valid() || v.index() >= num_nodes) {
+        throw InvalidInput(std::string(who) + ": hex h" + std::to_string(h) + " names node " +
+                           v.str() + " out of range (" + std::to_string(num_nodes) + " nodes)");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
                                 const PositionOptions& options) {
   ClusterReport report;
+  check_arguments("untangle_clusters", mesh, fixed);
   const std::vector<stc::Hex>& hexes = mesh.complex.hexes;
   const auto num_nodes = static_cast<std::size_t>(mesh.points.rows());
-  if (fixed.size() != num_nodes) {
-    throw InvalidInput("untangle_clusters: the fixed mask has " + std::to_string(fixed.size()) +
-                       " entries for " + std::to_string(num_nodes) + " nodes");
-  }
-  for (std::size_t h = 0; h < hexes.size(); ++h) {
-    for (const NodeId v : hexes[h]) {
-      if (!v.is_valid() || v.index() >= num_nodes) {
-        throw InvalidInput("untangle_clusters: hex h" + std::to_string(h) + " names node " +
-                           v.str() + " out of range (" + std::to_string(num_nodes) + " nodes)");
-      }
-    }
-  }
   const NodeHexes node_hexes = primal::node_hexes(hexes, num_nodes);
   std::vector<std::size_t> inverted = inverted_hexes(mesh);
   report.inverted_before = report.inverted_after = inverted.size();
@@ -556,20 +564,9 @@ ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
 HingeShapeReport raise_worst_by_hinges(HexMesh& mesh, const std::vector<bool>& fixed,
                                        const PositionOptions& options) {
   HingeShapeReport report;
+  check_arguments("raise_worst_by_hinges", mesh, fixed);
   const std::vector<stc::Hex>& hexes = mesh.complex.hexes;
   const auto num_nodes = static_cast<std::size_t>(mesh.points.rows());
-  if (fixed.size() != num_nodes) {
-    throw InvalidInput("raise_worst_by_hinges: the fixed mask has " + std::to_string(fixed.size()) +
-                       " entries for " + std::to_string(num_nodes) + " nodes");
-  }
-  for (std::size_t h = 0; h < hexes.size(); ++h) {
-    for (const NodeId v : hexes[h]) {
-      if (!v.is_valid() || v.index() >= num_nodes) {
-        throw InvalidInput("raise_worst_by_hinges: hex h" + std::to_string(h) + " names node " +
-                           v.str() + " out of range (" + std::to_string(num_nodes) + " nodes)");
-      }
-    }
-  }
   if (!(options.hinge_shape_below > 0.0)) {
     report.stop = "off";
     return report;
