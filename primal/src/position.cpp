@@ -1527,7 +1527,12 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
       report.shape.mean_scaled_jacobian_after = after.mean_scaled_jacobian;
     }
   } else {
-    report.shape.hinge.stop = options.hinge_shape_below > 0.0 ? "nothing below" : "off";
+    // The pass's own verdicts, without its tables: it would stop at once.
+    report.shape.hinge.stop = !(options.hinge_shape_below > 0.0) ? "off"
+                              : after.inverted > 0               ? "inverted hexes: skipped"
+                                                                 : "nothing below";
+    report.shape.hinge.min_scaled_jacobian_before = after.min_scaled_jacobian;
+    report.shape.hinge.min_scaled_jacobian_after = after.min_scaled_jacobian;
   }
   report.inverted_after = after.inverted;
   report.min_scaled_jacobian_after = after.min_scaled_jacobian;

@@ -37,26 +37,51 @@ namespace {
 
 constexpr std::size_t kUnset = std::numeric_limits<std::size_t>::max();
 
-/// Inverted hexes (scaled Jacobian <= 0) among `hexes`, and the worst scaled Jacobian.
+/// The local untangling's judge: inverted hexes (scaled Jacobian <= 0), then the worst scaled
+/// Jacobian; fewer inverted is better, then a larger worst.
 struct Tally {
   std::size_t inverted = 0;
   double worst = std::numeric_limits<double>::infinity();
+
+  static Tally of(const Points& points, const std::vector<stc::Hex>& hexes) {
+    Tally t;
+    for (const stc::Hex& h : hexes) {
+      const double sj = hex_scaled_jacobian(points, h);
+      t.inverted += sj <= 0.0 ? 1 : 0;
+      t.worst = std::min(t.worst, sj);
+    }
+    return t;
+  }
+  [[nodiscard]] bool better_than(const Tally& b) const {
+    return inverted < b.inverted || (inverted == b.inverted && worst > b.worst);
+  }
 };
 
-Tally tally(const Points& points, const std::vector<stc::Hex>& all,
-            const std::vector<std::size_t>& hexes) {
-  Tally t;
-  for (const std::size_t h : hexes) {
-    const double sj = hex_scaled_jacobian(points, all[h]);
-    t.inverted += sj <= 0.0 ? 1 : 0;
-    t.worst = std::min(t.worst, sj);
-  }
-  return t;
-}
+/// The shape pass's judge (`raise_worst_by_hinges`): the scaled Jacobians, sorted; better when,
+/// at the first place where the two sorted lists differ, the value is larger by at least
+/// `kStep` (so raising a hex next to a worse one that no try can move still counts, and no hex
+/// drops below the ones before it).
+struct Leximin {
+  static constexpr double kStep = 1e-4;
+  std::vector<double> sorted;
 
-bool better(const Tally& a, const Tally& b) {
-  return a.inverted < b.inverted || (a.inverted == b.inverted && a.worst > b.worst);
-}
+  static Leximin of(const Points& points, const std::vector<stc::Hex>& hexes) {
+    Leximin l;
+    l.sorted.reserve(hexes.size());
+    for (const stc::Hex& h : hexes) l.sorted.push_back(hex_scaled_jacobian(points, h));
+    std::sort(l.sorted.begin(), l.sorted.end());
+    return l;
+  }
+  [[nodiscard]] bool better_than(const Leximin& b) const {
+    for (std::size_t k = 0; k < sorted.size() && k < b.sorted.size(); ++k) {
+      if (sorted[k] == b.sorted[k]) continue;
+      return sorted[k] >= b.sorted[k] + kStep;
+    }
+    return false;
+  }
+  /// The worst scaled Jacobian (1 for no hex).
+  [[nodiscard]] double worst() const { return sorted.empty() ? 1.0 : sorted.front(); }
+};
 
 /// The clusters of `inverted` (sorted hex ids): components under "shares a node", each listed
 /// in increasing hex order, ordered by their smallest hex.
@@ -198,23 +223,24 @@ std::size_t iterations_left(const PositionOptions& options, const ClusterReport&
   return left;
 }
 
-/// A cluster's widest sub-mesh, over which its tries are judged (its hexes are all the hexes
-/// any try can change): fewest inverted hexes, then the largest worst scaled Jacobian. The
-/// best positions so far are kept, and written back only when they beat the start.
+/// A cluster's (or a seed's) widest sub-mesh, over which its tries are judged (its hexes are
+/// all the hexes any try can change) by `Score` (`Tally` or `Leximin`). The best positions so
+/// far are kept, and written back only when they beat the start.
+template <class Score>
 class WidestSubMesh {
  public:
   WidestSubMesh(const HexMesh& mesh, const std::vector<bool>& fixed, const NodeHexes& node_hexes,
                 const std::vector<std::size_t>& hexes)
-      : wide_(sub_mesh(mesh, fixed, node_hexes, hexes, false)),
-        all_(wide_.mesh.complex.hexes.size()) {
-    for (std::size_t k = 0; k < all_.size(); ++k) all_[k] = k;
+      : wide_(sub_mesh(mesh, fixed, node_hexes, hexes, false)) {
     for (std::size_t v = 0; v < wide_.node_of.size(); ++v)
       local_.emplace(wide_.node_of[v].value(), v);
-    at_start_ = best_ = tally(wide_.mesh.points, wide_.mesh.complex.hexes, all_);
+    at_start_ = best_ = Score::of(wide_.mesh.points, wide_.mesh.complex.hexes);
   }
 
-  [[nodiscard]] const Tally& at_start() const { return at_start_; }
-  [[nodiscard]] const Tally& best() const { return best_; }
+  [[nodiscard]] const Score& at_start() const { return at_start_; }
+  [[nodiscard]] const Score& best() const { return best_; }
+  /// Whether a try judged so far beats the start.
+  [[nodiscard]] bool improved() const { return best_.better_than(at_start_); }
 
   /// Judges the positions `sub` (a sub-mesh of this one) gives its nodes; kept when better
   /// than the best so far.
@@ -224,93 +250,26 @@ class WidestSubMesh {
       trial.row(static_cast<Eigen::Index>(local_.at(sub.node_of[v].value()))) =
           sub.mesh.points.row(static_cast<Eigen::Index>(v));
     }
-    const Tally tried = tally(trial, wide_.mesh.complex.hexes, all_);
-    if (better(tried, best_)) {
-      best_ = tried;
-      best_points_ = std::move(trial);
-    }
-  }
-
-  /// Writes the best positions into `mesh` when they beat the start: true then.
-  bool keep_best(HexMesh& mesh) const {
-    if (!better(best_, at_start_)) return false;
-    for (std::size_t v = 0; v < wide_.node_of.size(); ++v)
-      mesh.points.row(wide_.node_of[v].value()) = best_points_.row(static_cast<Eigen::Index>(v));
-    return true;
-  }
-
- private:
-  SubMesh wide_;
-  std::vector<std::size_t> all_;
-  std::map<std::int32_t, std::size_t> local_;
-  Tally at_start_;
-  Tally best_;
-  Points best_points_;
-};
-
-/// The shape pass's judge (`raise_worst_by_hinges`): the scaled Jacobians of the widest
-/// sub-mesh's hexes, sorted; a try is better when, at the first place where the two sorted
-/// lists differ, its value is larger by at least `kLeximinStep` (so raising a hex next to a
-/// worse one that no try can move still counts, and no hex drops below the ones before it).
-constexpr double kLeximinStep = 1e-4;
-
-class LeximinSubMesh {
- public:
-  LeximinSubMesh(const HexMesh& mesh, const std::vector<bool>& fixed, const NodeHexes& node_hexes,
-                 const std::vector<std::size_t>& hexes)
-      : wide_(sub_mesh(mesh, fixed, node_hexes, hexes, false)) {
-    for (std::size_t v = 0; v < wide_.node_of.size(); ++v)
-      local_.emplace(wide_.node_of[v].value(), v);
-    start_ = best_ = sorted_quality(wide_.mesh.points);
-  }
-
-  /// Judges the positions `sub` (a sub-mesh of this one) gives its nodes.
-  void judge(const SubMesh& sub) {
-    Points trial = wide_.mesh.points;
-    for (std::size_t v = 0; v < sub.node_of.size(); ++v) {
-      trial.row(static_cast<Eigen::Index>(local_.at(sub.node_of[v].value()))) =
-          sub.mesh.points.row(static_cast<Eigen::Index>(v));
-    }
-    std::vector<double> tried = sorted_quality(trial);
-    if (better(tried, best_)) {
+    Score tried = Score::of(trial, wide_.mesh.complex.hexes);
+    if (tried.better_than(best_)) {
       best_ = std::move(tried);
       best_points_ = std::move(trial);
     }
   }
 
-  /// Whether a try judged so far beats the start.
-  [[nodiscard]] bool improved() const { return better(best_, start_); }
-  /// The worst scaled Jacobian of the best positions so far.
-  [[nodiscard]] double worst() const { return best_.empty() ? 1.0 : best_.front(); }
-
   /// Writes the best positions into `mesh` when they beat the start: true then.
   bool keep_best(HexMesh& mesh) const {
-    if (!better(best_, start_)) return false;
+    if (!improved()) return false;
     for (std::size_t v = 0; v < wide_.node_of.size(); ++v)
       mesh.points.row(wide_.node_of[v].value()) = best_points_.row(static_cast<Eigen::Index>(v));
     return true;
   }
 
  private:
-  [[nodiscard]] std::vector<double> sorted_quality(const Points& points) const {
-    std::vector<double> q;
-    q.reserve(wide_.mesh.complex.hexes.size());
-    for (const stc::Hex& h : wide_.mesh.complex.hexes) q.push_back(hex_scaled_jacobian(points, h));
-    std::sort(q.begin(), q.end());
-    return q;
-  }
-  static bool better(const std::vector<double>& a, const std::vector<double>& b) {
-    for (std::size_t k = 0; k < a.size() && k < b.size(); ++k) {
-      if (a[k] == b[k]) continue;
-      return a[k] >= b[k] + kLeximinStep;
-    }
-    return false;
-  }
-
   SubMesh wide_;
   std::map<std::int32_t, std::size_t> local_;
-  std::vector<double> start_;
-  std::vector<double> best_;
+  Score at_start_;
+  Score best_;
   Points best_points_;
 };
 
@@ -330,7 +289,7 @@ void hinge_phase(HexMesh& mesh, const std::vector<bool>& fixed, const NodeHexes&
   for (std::size_t c = 0; c < clusters.size() && !work_bound; ++c) {
     const std::vector<std::vector<std::size_t>> layers =
         grown(clusters[c], options.cluster_max_rings + 1, hexes, node_hexes, mark);
-    WidestSubMesh wide(mesh, fixed, node_hexes, layers.back());
+    WidestSubMesh<Tally> wide(mesh, fixed, node_hexes, layers.back());
     if (wide.at_start().inverted == 0) continue;
     ++report.hinge_clusters;
     for (int rings = 1;
@@ -446,7 +405,7 @@ ClusterReport untangle_clusters(HexMesh& mesh, const std::vector<bool>& fixed,
       // the hexes of that one (all the hexes any of them can change), and the best kept.
       const std::vector<std::vector<std::size_t>> layers =
           grown(clusters[c], options.cluster_max_rings, hexes, node_hexes, mark);
-      WidestSubMesh wide(mesh, fixed, node_hexes, layers.back());
+      WidestSubMesh<Tally> wide(mesh, fixed, node_hexes, layers.back());
       // An earlier cluster's sub-mesh may have untangled it.
       if (wide.at_start().inverted == 0) continue;
       ++report.clusters;
@@ -618,7 +577,7 @@ HingeShapeReport raise_worst_by_hinges(HexMesh& mesh, const std::vector<bool>& f
     report.ran = true;
     const std::vector<std::vector<std::size_t>> layers =
         grown({seed}, options.cluster_max_rings + 1, hexes, node_hexes, mark);
-    LeximinSubMesh wide(mesh, fixed, node_hexes, layers.back());
+    WidestSubMesh<Leximin> wide(mesh, fixed, node_hexes, layers.back());
     ++report.seeds;
     // Rings in order, until a try is better than the start.
     for (int rings = 1; rings <= options.cluster_max_rings && !spent() && !wide.improved();
@@ -628,7 +587,7 @@ HingeShapeReport raise_worst_by_hinges(HexMesh& mesh, const std::vector<bool>& f
       // Pull up the corners below 1.5 times the worst hex there (at least 0.0075), the
       // smoothing starting at beta (only those corners pull) or, when that is not better, at
       // 0.1 (every corner nearby pulls at first).
-      const double beta = 1.5 * std::max(0.005, wide.worst());
+      const double beta = 1.5 * std::max(0.005, wide.best().worst());
       for (const double first_delta : {beta, 0.1}) {
         if (spent() || wide.improved()) break;
         SubMesh sub = sub_mesh(mesh, fixed, node_hexes, hexes_in, true);

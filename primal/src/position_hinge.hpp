@@ -18,12 +18,12 @@ struct HingeOutcome {
 
 /// Moves the free nodes of `mesh` (`fixed[v]` false) to lower
 ///   sum over terms t of  sqrt((q_t - beta)^2 + delta^2) - (q_t - beta),
-/// a smoothed 2 max(0, beta - q_t), for delta = `first_delta`, 0.3 times that, ... down to
-/// 1e-6 (one L-BFGS run
-/// each, from where the last ended). The terms are the 8 corners and the centre (principal
-/// axes, as `hex_scaled_jacobian` reads them) of every hex with a free node, a corner only
-/// when one of its four nodes is free; q is the mean-ratio measure of the corner's three
-/// edge vectors (or of the three axes), 3 sqrt(3) det / (|a|^2 + |b|^2 + |c|^2)^(3/2), in
+/// a smoothed 2 max(0, beta - q_t), for delta = `first_delta`, 0.3 times that, ... while
+/// above 1e-6 (one L-BFGS run each, from where the last ended; from 0.1: 10 stages). The
+/// terms are the 8 corners and the centre (principal axes, as `hex_scaled_jacobian` reads
+/// them) of every hex with a free node, a corner only when one of its four nodes is free; q
+/// is the mean-ratio measure of the corner's three edge vectors (or of the three axes),
+/// 3 sqrt(3) det / (|a|^2 + |b|^2 + |c|^2)^(3/2), in
 /// [-1, 1]. Only terms below `beta` pull; q, unlike the scaled Jacobian, stays smooth when
 /// an edge gets short, where max-min formulations stall (docs/geometry.md).
 /// At most `max_iterations` L-BFGS iterations in all (each stage at most 5000). A stage whose

@@ -175,6 +175,9 @@ TEST(LocalUntangling, RunsInPositionNodesWhenHexesStayInverted) {
   EXPECT_LE(r.clusters.inverted_after, r.clusters.inverted_before);
   EXPECT_EQ(r.clusters.inverted_after, r.inverted_after);
   EXPECT_NE(r.stop.find("; local untangling: "), std::string::npos) << r.stop;
+  // The shape phase's hinge pass needs a valid mesh, and says why it did not run.
+  EXPECT_FALSE(r.shape.hinge.ran);
+  EXPECT_EQ(r.shape.hinge.stop, "inverted hexes: skipped");
 
   // Off: the report says so and nothing runs.
   HexMesh again = box_with_a_fold(&fixed, &moved, 1.6);
