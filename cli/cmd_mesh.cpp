@@ -463,7 +463,9 @@ int run_mesh(const MeshArgs& a) {
                      {"nonconvexity_seams", s.nonconvexity_seams},
                      {"recoveries", s.recoveries},
                      {"recovery_trials", s.recovery_trials},
-                     {"seam_undo_retries", s.seam_undo_retries}};
+                     {"seam_undo_retries", s.seam_undo_retries},
+                     {"fill_hexes", s.fill_hexes},
+                     {"reliable_from_start", s.reliable_from_start}};
   {
     // The block recovery (docs/weave-recovery.md): where each kept pillow went.
     nlohmann::json recoveries = nlohmann::json::array();
@@ -518,6 +520,15 @@ int run_mesh(const MeshArgs& a) {
                 << (s.seam_undo_retries == 1 ? "" : "s")
                 << " blocked keeping the shrinks that leave a seam blocked; woven again undoing "
                    "them\n";
+    }
+    if (s.fill_hexes > 0) {
+      std::cout << "fill       the weave blocked; " << s.fill_hexes << " hex"
+                << (s.fill_hexes == 1 ? "" : "es")
+                << " attached by front moves filled its first blocked front\n";
+    }
+    if (s.reliable_from_start > 0) {
+      std::cout << "fallback   the extended weave blocked in every way; woven with the reliable "
+                   "rules from the start\n";
     }
     if (s.recoveries > 0) {
       std::cout << "recovery   the weave blocked; " << s.recoveries << " pillow"

@@ -498,6 +498,8 @@ void add_stats(weave::WeaveStats& sum, const weave::WeaveStats& s) {
   sum.recoveries += s.recoveries;
   sum.recovery_trials += s.recovery_trials;
   sum.seam_undo_retries += s.seam_undo_retries;
+  sum.fill_hexes += s.fill_hexes;
+  sum.reliable_from_start += s.reliable_from_start;
 }
 
 /// The glued complex of `hexes` (over final ids, `num_nodes` final nodes) checked by

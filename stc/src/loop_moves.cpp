@@ -89,6 +89,8 @@ struct State {
   std::vector<AppliedMove> moves;
   std::size_t num_nodes = 0;
   std::size_t live = 0;
+  /// `LoopMoveOptions::strict_contacts`.
+  bool strict_contacts = false;
   /// `signature` of the live faces, kept up to date by `apply`.
   std::uint64_t signature = 0;
   Score score{};
@@ -452,6 +454,30 @@ bool hex_face_on(const State& s, const Quad& q) {
   });
 }
 
+/// True when a hex on the existing nodes `mapped` (sorted) would share more than four nodes
+/// with an attached hex, or four nodes with one that is not among `glued` (the owners of the
+/// front faces it is built on): two hexes share at most one face, and four shared nodes must
+/// be that face.
+bool shares_too_much(const State& s, const std::vector<NodeId>& mapped,
+                     const std::vector<std::int32_t>& glued) {
+  std::vector<std::int32_t> seen;
+  for (const NodeId v : mapped) {
+    if (v.index() >= s.hex_head.size()) continue;
+    for (std::int32_t e = s.hex_head[v.index()]; e >= 0;
+         e = s.hex_next[static_cast<std::size_t>(e)]) {
+      const std::int32_t id = e / 8;
+      if (std::find(seen.begin(), seen.end(), id) != seen.end()) continue;
+      seen.push_back(id);
+      std::size_t common = 0;
+      for (const NodeId w : s.hexes[static_cast<std::size_t>(id)])
+        if (std::binary_search(mapped.begin(), mapped.end(), w)) ++common;
+      if (common > 4) return true;
+      if (common == 4 && std::find(glued.begin(), glued.end(), id) == glued.end()) return true;
+    }
+  }
+  return false;
+}
+
 /// Adds `h` to the attached hexes and to the lists of its nodes (`State::hex_head`).
 void add_hex(State& s, const Hex& h) {
   const auto id = static_cast<std::int32_t>(s.hexes.size());
@@ -570,6 +596,7 @@ bool try_candidate(const State& s, const Pattern& pattern, std::size_t seed, Slo
     if (v.is_valid()) mapped.push_back(v);
   std::sort(mapped.begin(), mapped.end());
   if (std::adjacent_find(mapped.begin(), mapped.end()) != mapped.end()) return false;
+  if (s.strict_contacts && mapped.size() >= 4 && shares_too_much(s, mapped, owners)) return false;
   // Valence: a node with all three of its hex faces chosen leaves the front and must have
   // exactly those three faces; any other node keeps faces outside and valence >= 3.
   for (int local = 0; local < 8; ++local) {
@@ -1359,6 +1386,7 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
 
 LoopMoveResult untangle_loops(const QuadSurface& surface, const LoopMoveOptions& options) {
   State current = initial_state(surface);
+  current.strict_contacts = options.strict_contacts;
   const std::size_t before = std::get<1>(current.score);
   LoopMoveResult stats;
   run(current, options, Goal::SimpleLoops, surface.num_quads(), stats);
@@ -1385,6 +1413,7 @@ LoopMoveResult fill_front(const LoopMoveResult& start, const LoopMoveOptions& op
     }
   }
   State current = initial_state(start.front);
+  current.strict_contacts = options.strict_contacts;
   for (std::size_t f = 0; f < current.owner.size(); ++f)
     current.owner[f] = start.front_hex[f] >= 0 ? start.front_hex[f] : -start.front_input[f] - 1;
   current.num_nodes = std::max(current.num_nodes, start.hexes.num_nodes);

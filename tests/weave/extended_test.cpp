@@ -601,11 +601,21 @@ TEST(NonConvexitySeam, FiresNearTheReEntrantEdgeThenBlocksTheWeave) {
   // Switched on, the rule folds hex faces onto the L's input quads next to the re-entrant
   // edge; measured, the weave of this L then blocks (docs/extended-rules.md says why the rule
   // is off by default). Both halves are asserted: the folds happen, and the weave ends with a
-  // WeaveError naming blocked nodes, never with a complex.
+  // WeaveError naming blocked nodes, never with a complex. Without the last ways of `weave`
+  // (the fill and the reliable rules from the start, docs/weave-recovery.md "The fill"), which
+  // complete it.
   const auto s = test::voxel_surface(thick_l_cells());
   WeaveOptions o = extended_options();
   o.extended.nonconvexity_seam = true;
   o.trace = false;
+  {
+    const WeaveResult last = weave_extended(s, o);
+    const auto v = stc::validate_hex_complex(last.complex, &s.surface);
+    EXPECT_TRUE(v.valid) << v.summary();
+    EXPECT_TRUE(last.stats.fill_hexes > 0 || last.stats.reliable_from_start > 0);
+  }
+  o.fill_up_to = 0;
+  o.reliable_from_start = false;
   std::size_t folds = 0;
   std::size_t failed_shrinks = 0;
   o.on_trace = [&](const TraceEvent& e) {

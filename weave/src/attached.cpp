@@ -8,155 +8,13 @@
 #include <string>
 
 #include "driver.hpp"
+#include "replay.hpp"
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/stc/loops.hpp"
 #include "stcweave/weave/kernel.hpp"
 
 namespace stcweave::weave {
 namespace {
-
-/// True when `a` and `b` hold the same nodes in the same cyclic order.
-bool same_cycle(const stc::Quad& a, const stc::Quad& b) {
-  for (int r = 0; r < 4; ++r)
-    if (quad_rotated(a, r) == b) return true;
-  return false;
-}
-
-/// Why `hex` (canonical nodes, built on the front faces `used`) cannot join the woven complex,
-/// if it cannot: two of its front faces belong to one hex, it would share more than one face
-/// (or four nodes that are not a face being glued now) with a woven hex, or one of its edges
-/// between existing nodes is an edge of a woven hex off the front.
-std::optional<std::string> conflict(const WeaveState& state, const stc::Hex& hex,
-                                    const std::vector<FaceIndex>& used, std::size_t old_nodes) {
-  const Front& front = state.front;
-  for (std::size_t i = 0; i < used.size(); ++i) {
-    for (std::size_t j = i + 1; j < used.size(); ++j) {
-      const FaceOwner& a = front.face(used[i]).owner;
-      const FaceOwner& b = front.face(used[j]).owner;
-      if (a.is_hex() && b.is_hex() && a.id == b.id)
-        return "two of its front faces belong to hex " + std::to_string(a.id);
-    }
-  }
-  std::vector<HexId> near;
-  for (const NodeId n : hex) {
-    if (n.index() < old_nodes) {
-      near.insert(near.end(), state.woven.hexes_at[n.index()].begin(),
-                  state.woven.hexes_at[n.index()].end());
-    }
-  }
-  std::sort(near.begin(), near.end());
-  near.erase(std::unique(near.begin(), near.end()), near.end());
-  for (const HexId g : near) {
-    std::array<NodeId, 8> gn{};
-    for (std::size_t i = 0; i < 8; ++i) gn[i] = front.find(state.woven.hexes[g.index()][i]);
-    std::vector<NodeId> common;
-    for (const NodeId n : hex)
-      if (std::find(gn.begin(), gn.end(), n) != gn.end()) common.push_back(n);
-    if (common.size() > 4) return "it would share more than one face with " + g.str();
-    if (common.size() == 4) {
-      bool glued = false;
-      for (const FaceIndex f : used) {
-        const FaceOwner& o = front.face(f).owner;
-        glued = glued || (o.is_hex() && o.id == g.value());
-      }
-      if (!glued) return "it would share four nodes with " + g.str() + " off the front";
-    }
-    for (const auto& e : stc::kHexEdges) {
-      const NodeId a = hex[static_cast<std::size_t>(e[0])];
-      const NodeId b = hex[static_cast<std::size_t>(e[1])];
-      if (a.index() >= old_nodes || b.index() >= old_nodes) continue;
-      if (front.find_edge(a, b).face != kNoFace) continue;  // a front edge
-      for (const auto& ge : stc::kHexEdges) {
-        const NodeId c = gn[static_cast<std::size_t>(ge[0])];
-        const NodeId d = gn[static_cast<std::size_t>(ge[1])];
-        if ((c == a && d == b) || (c == b && d == a))
-          return "its edge " + a.str() + "-" + b.str() + " is an edge of " + g.str() +
-                 " off the front";
-      }
-    }
-  }
-  return std::nullopt;
-}
-
-/// Puts `hexes` on the front of `state`, in order. `node_of` maps their node ids below its size
-/// to canonical front nodes; the others are new nodes. With `check`, a hex that `conflict`
-/// refuses stops the replay (its reason returned) before it is built.
-std::optional<std::string> replay(WeaveState& state, WeaveContext& ctx,
-                                  const stc::HexComplex& hexes, std::vector<NodeId> node_of,
-                                  bool check) {
-  Front& front = state.front;
-  const std::size_t known = node_of.size();
-  node_of.resize(std::max(hexes.num_nodes, known), NodeId::invalid());
-  for (std::size_t h = 0; h < hexes.hexes.size(); ++h) {
-    const std::string which = "attached hex " + std::to_string(h);
-    const std::size_t old_nodes = front.num_nodes();
-    stc::Hex hex{};
-    for (std::size_t i = 0; i < 8; ++i) {
-      const NodeId v = hexes.hexes[h][i];
-      if (!v.is_valid() || v.index() >= node_of.size())
-        throw InvalidInput("weave: " + which + " has node id " + v.str() + " out of range");
-      if (!node_of[v.index()].is_valid()) {
-        if (v.index() < known)
-          throw InvalidInput("weave: " + which + " uses node " + v.str() + " of no front node");
-        node_of[v.index()] = state.new_node();
-      }
-      hex[i] = front.find(node_of[v.index()]);
-    }
-    std::array<NodeId, 8> sorted = hex;
-    std::sort(sorted.begin(), sorted.end());
-    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
-      throw InvalidInput("weave: " + which + " repeats a node");
-    std::vector<FaceIndex> used;
-    for (int lf = 0; lf < 6; ++lf) {
-      const stc::Quad q = stc::hex_face(hex, lf);
-      const auto key = quad_sorted(q);
-      for (const FaceIndex f : front.faces_at(q[0])) {
-        if (quad_sorted(front.face(f).nodes) != key) continue;
-        if (!same_cycle(front.face(f).nodes, q)) {
-          throw InvalidInput("weave: " + which + " lies on front face " + std::to_string(f) +
-                             " with the wrong orientation (its faces on the front must be its "
-                             "outward faces)");
-        }
-        used.push_back(f);
-        break;
-      }
-    }
-    if (used.empty())
-      throw InvalidInput("weave: " + which + " has no face on the front it is attached to");
-    if (check) {
-      if (auto why = conflict(state, hex, used, old_nodes)) return which + ": " + *why;
-    }
-    make_hex(state, ctx, hex, used, "attached", hex[0]);
-  }
-  if (auto err = front.check_invariants()) {
-    throw InvalidInput("weave: the front after the " + std::to_string(hexes.hexes.size()) +
-                       " attached hexes is not a closed oriented manifold quad surface: " + *err);
-  }
-  return std::nullopt;
-}
-
-/// The live front of `state` as a quad surface with compact node ids; `nodes` gets, per compact
-/// id, the canonical front node.
-stc::QuadSurface front_surface(const Front& front, std::vector<NodeId>& nodes) {
-  std::vector<std::int32_t> compact(front.num_nodes(), -1);
-  nodes.clear();
-  stc::QuadSurface s;
-  for (FaceIndex f = 0; static_cast<std::size_t>(f) < front.face_capacity(); ++f) {
-    if (!front.is_alive(f)) continue;
-    stc::Quad q{};
-    for (std::size_t i = 0; i < 4; ++i) {
-      const NodeId n = front.face(f).nodes[i];
-      if (compact[n.index()] < 0) {
-        compact[n.index()] = static_cast<std::int32_t>(nodes.size());
-        nodes.push_back(n);
-      }
-      q[i] = NodeId(compact[n.index()]);
-    }
-    s.quads.push_back(q);
-  }
-  s.num_nodes = nodes.size();
-  return s;
-}
 
 /// One round of front moves on a blocked weave whose front has loops crossing themselves:
 /// true when hexes were attached (the weave goes on).
@@ -176,7 +34,7 @@ bool untangle_round(WeaveState& state, WeaveContext& ctx, const AttachedWeaveOpt
   }
   if (moves.moves.empty()) return false;
   WeaveState::Checkpoint saved = state.checkpoint();
-  if (auto why = replay(state, ctx, moves.hexes, nodes, true)) {
+  if (auto why = replay(state, ctx, moves.hexes, nodes, true, "attached")) {
     state.roll_back(std::move(saved));
     if (report != nullptr) report->refusals.push_back(*why);
     return false;
@@ -203,7 +61,7 @@ WeaveResult weave_attached(const stc::QuadSurface& surface, const stc::HexComple
       initial_state(surface, options, side_angles), options,
       rule_budget(surface, options) + attached.hexes.size(),
       [&](WeaveState& state, WeaveContext& ctx) {
-        (void)replay(state, ctx, attached, input, false);
+        (void)replay(state, ctx, attached, input, false, "attached");
       },
       [&](WeaveState& state, WeaveContext& ctx) {
         return untangle_round(state, ctx, more, report, rounds);

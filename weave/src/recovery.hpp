@@ -35,4 +35,14 @@ struct RecoveryMove {
 std::vector<Recovery> recover_blocked(WeaveState& state, WeaveContext& ctx, const WeaveRun& run,
                                       const std::string& why);
 
+/// The fill of a blocked front (`WeaveOptions::fill_up_to`, fill.cpp): when the front has at
+/// most `up_to` faces (and an even number), the front moves of stc/loop_moves.hpp
+/// (`stc::fill_front`) attach hexes to it until nothing is left, knowing the woven hexes at its
+/// nodes (no hex on two faces of one of them, no edge or face one of them has); their hexes
+/// are then built on the front by `make_hex` (rule "fill"), each checked against the woven
+/// complex. Returns nothing when the front is empty now; otherwise why not, with `state` as it
+/// was. Counted in `WeaveStats::fill_hexes`.
+std::optional<std::string> fill_blocked_front(WeaveState& state, WeaveContext& ctx,
+                                              std::size_t up_to);
+
 }  // namespace stcweave::weave

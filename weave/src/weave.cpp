@@ -93,6 +93,7 @@ bool shrink_a_candidate(WeaveState& state, WeaveContext& ctx, const FrontLoops& 
   const bool backtrack = ctx.options.backtrack;
   for (std::size_t attempt = 0; attempt < (backtrack ? 2U : 1U); ++attempt) {
     const bool last_resort = backtrack && attempt == 1;
+    if (last_resort && !ctx.options.keep_partial_shrink) break;
     const std::size_t count =
         last_resort ? std::min<std::size_t>(1, candidates.size()) : candidates.size();
     for (std::size_t ci = 0; ci < count; ++ci) {
@@ -282,43 +283,89 @@ std::optional<std::string> weave_front(WeaveState& state, WeaveContext& ctx,
 
 WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options,
                   const std::vector<std::array<double, 4>>& side_angles) {
-  const auto once = [&](const WeaveOptions& o) {
-    return run_weave(initial_state(surface, o, side_angles), o, rule_budget(surface, o), {}, {});
+  const auto once = [&](const WeaveOptions& o, const BlockedHook& on_blocked = {},
+                        const std::function<void(WeaveState&, WeaveContext&)>& prepare = {}) {
+    return run_weave(initial_state(surface, o, side_angles), o, rule_budget(surface, o), prepare,
+                     on_blocked);
   };
   // (A rule budget of the caller's is kept: no second weave.)
   if (options.undo_seam_blocking_shrinks || !options.undo_seam_blocking_on_block ||
       !options.backtrack || options.max_rules != 0)
     return once(options);
-  // A weave that blocks keeping the shrinks that leave a seam blocked is woven again undoing
-  // them (docs/weave-recovery.md "Seams left blocked"). The streamed trace of the first weave is
-  // held until it is known which weave the caller gets.
-  WeaveOptions first = options;
-  std::vector<TraceEvent> held;
-  if (options.on_trace) first.on_trace = [&held](const TraceEvent& e) { held.push_back(e); };
-  const auto forward = [&] {
+  // A weave that blocks is woven again in other ways, each from the start, until one completes
+  // (docs/weave-recovery.md). The streamed trace of each is held until it is known which weave
+  // the caller gets; when every way fails, the first weave's trace and error are given.
+  std::vector<TraceEvent> first_trace;
+  std::vector<TraceEvent> kept_trace;
+  const auto attempt = [&](WeaveOptions o, std::vector<TraceEvent>& held, const auto& run) {
+    if (options.on_trace) o.on_trace = [&held](const TraceEvent& e) { held.push_back(e); };
+    return run(o);
+  };
+  const auto give = [&](WeaveResult r, std::vector<TraceEvent>& held) {
     for (const TraceEvent& e : held) options.on_trace(e);
+    return r;
   };
   try {
-    WeaveResult r = once(first);
-    forward();
-    return r;
+    return give(attempt(options, first_trace, [&](const WeaveOptions& o) { return once(o); }),
+                first_trace);
   } catch (const WeaveError&) {
     const std::exception_ptr blocked = std::current_exception();
+    // Undoing the shrinks that leave a seam blocked ("Seams left blocked: the retry").
     WeaveOptions undo = options;
     undo.undo_seam_blocking_shrinks = true;
-    std::vector<TraceEvent> held_undo;
-    if (options.on_trace)
-      undo.on_trace = [&held_undo](const TraceEvent& e) { held_undo.push_back(e); };
     try {
-      WeaveResult r = once(undo);
-      held.swap(held_undo);
-      forward();
+      WeaveResult r = attempt(undo, kept_trace, [&](const WeaveOptions& o) { return once(o); });
       r.stats.seam_undo_retries = 1;
-      return r;
+      return give(std::move(r), kept_trace);
     } catch (const WeaveError&) {
-      forward();
-      std::rethrow_exception(blocked);
+      kept_trace.clear();
     }
+    if (options.block_recovery == BlockRecovery::Auto && options.fill_up_to > 0) {
+      // The fill (docs/weave-recovery.md "The fill"): the front where every candidate first
+      // fails, without and with the undoing of those shrinks, then the input itself before any
+      // rule, filled by front moves.
+      for (int way = 0; way < 3; ++way) {
+        WeaveOptions fill = options;
+        fill.undo_seam_blocking_shrinks = way == 1;
+        fill.block_recovery = BlockRecovery::Off;
+        fill.keep_partial_shrink = false;
+        bool tried = false;
+        const BlockedHook try_fill = [&](WeaveState& state, WeaveContext& ctx) {
+          if (tried) return false;
+          tried = true;
+          return !fill_blocked_front(state, ctx, options.fill_up_to);
+        };
+        try {
+          WeaveResult r = attempt(fill, kept_trace, [&](const WeaveOptions& o) {
+            return once(o, try_fill, [&](WeaveState& state, WeaveContext& ctx) {
+              if (way == 2 && !try_fill(state, ctx))
+                throw WeaveError("weave: the fill of the input left faces");
+            });
+          });
+          r.stats.seam_undo_retries = way == 1 ? 1 : 0;
+          return give(std::move(r), kept_trace);
+        } catch (const WeaveError&) {
+          kept_trace.clear();
+        }
+      }
+    }
+    if (options.block_recovery == BlockRecovery::Auto && options.rules == RuleSet::Extended &&
+        !options.selection && options.reliable_from_start) {
+      // Last, under `extended`: the whole weave with the reliable rules (same section).
+      WeaveOptions plain = options;
+      plain.rules = RuleSet::Reliable;
+      plain.reliable_from_start = false;
+      try {
+        WeaveResult r = attempt(plain, kept_trace, [&](const WeaveOptions& o) {
+          return weave(surface, o, side_angles);
+        });
+        r.stats.reliable_from_start = 1;
+        return give(std::move(r), kept_trace);
+      } catch (const WeaveError&) {
+      }
+    }
+    for (const TraceEvent& e : first_trace) options.on_trace(e);
+    std::rethrow_exception(blocked);
   }
 }
 

@@ -171,6 +171,11 @@ struct WeaveOptions {
   /// before each shrink); when all fail, the first candidate's partial shrink is kept. Off:
   /// a failed shrink's partial work is always kept.
   bool backtrack = true;
+  /// With `backtrack`: when every candidate fails from a front, the first one's partial shrink
+  /// is kept and the selection starts again (the last resort). Off: the weave is blocked
+  /// there (what the fill of `fill_up_to` runs with, so that it starts from the first such
+  /// front and not from one that partial shrinks grew).
+  bool keep_partial_shrink = true;
   /// With `backtrack`: a shrink that completes but leaves a valence-2 node whose seam is
   /// refused (more blocked seams than before it) is undone like a failed one and the next
   /// candidate tried. Such a seam stays refused (the merge would make two hexes share two
@@ -183,12 +188,29 @@ struct WeaveOptions {
   /// the caller's (a budget given is kept): when the weave ends blocked (its
   /// block recovery included) or spends its rule budget, it is woven once more from the start
   /// with `undo_seam_blocking_shrinks` on, and that weave is returned when it completes
-  /// (`WeaveStats::seam_undo_retries`); when it fails too, the first weave's error is thrown.
+  /// (`WeaveStats::seam_undo_retries`); when it fails too, the last ways below are tried
+  /// (`fill_up_to`, `reliable_from_start`), and when they fail the first weave's error is
+  /// thrown.
   /// A weave that completes is never woven twice, so its result is the same with this on or
   /// off. Measured on the loop-clean sphere quadrangulations of 18 and 20 quads and on the
   /// corpus (docs/weave-recovery.md "Seams left blocked"). The trace (`trace`, `on_trace`)
-  /// holds the weave returned, or the first one when both fail; an `observer` sees both.
+  /// holds the weave returned, or the first one when every way fails; an `observer` sees all.
   bool undo_seam_blocking_on_block = true;
+  /// `weave` only, under the same conditions, when that retry fails too: the weave is run once
+  /// more, without the block recovery and without `keep_partial_shrink`, to the first front
+  /// where every candidate fails (then the same undoing those shrinks, then the input itself
+  /// before any rule), and a front of at most this many faces is filled by the front
+  /// moves of stc/loop_moves.hpp (`stc::fill_front`: hexes attached until nothing is left,
+  /// knowing the woven hexes at the front's nodes), each hex of the fill checked against the
+  /// woven complex and built on the front (rule "fill", `WeaveStats::fill_hexes`). A weave
+  /// that completes otherwise never gets here, so its result is the same whatever this is.
+  /// Only with `block_recovery` `Auto`. 0: off. docs/weave-recovery.md "The fill".
+  std::size_t fill_up_to = 200;
+  /// `weave` only, under the same conditions, with `extended` rules (and no `selection` of the
+  /// caller's), when the fill fails too: the whole weave with the `reliable` rules from the
+  /// start, its own retries included (`WeaveStats::reliable_from_start`). Only with
+  /// `block_recovery` `Auto`. docs/weave-recovery.md "The fill".
+  bool reliable_from_start = true;
   /// When set, every trace event is also handed to it as it happens (independently of
   /// `trace`), so that the trace of a weave that throws is not lost.
   std::function<void(const TraceEvent&)> on_trace;
@@ -302,6 +324,11 @@ struct WeaveStats {
   /// undoing them, is the one kept (`WeaveOptions::undo_seam_blocking_on_block`): 0 or 1 for
   /// one weave, summed over the weaves of a cut solid.
   std::size_t seam_undo_retries = 0;
+  /// Hexes of the fill of a blocked front (`WeaveOptions::fill_up_to`); 0 when no fill was
+  /// kept.
+  std::size_t fill_hexes = 0;
+  /// 1 when the weave returned is the `reliable` one of `WeaveOptions::reliable_from_start`.
+  std::size_t reliable_from_start = 0;
 };
 
 /// One pillow of the block recovery, as kept in the result.
