@@ -115,6 +115,10 @@ nlohmann::json weave_options_json(const weave::WeaveOptions& options) {
   j["block_recovery"] = weave::to_string(options.block_recovery);
   j["undo_seam_blocking_shrinks"] = options.undo_seam_blocking_shrinks;
   j["undo_seam_blocking_on_block"] = options.undo_seam_blocking_on_block;
+  // The last ways after that retry (docs/weave-recovery.md "The fill"): only with it and with
+  // the block recovery on.
+  j["fill_up_to"] = options.fill_up_to;
+  j["reliable_from_start"] = options.reliable_from_start;
   if (options.rules == weave::RuleSet::Extended) {
     const weave::ExtendedParameters& p = options.extended;
     j["sharp"] = p.sharp;

@@ -349,6 +349,11 @@ TEST_F(Cli, WeavingOptionsAreCheckedAndRecorded) {
   EXPECT_TRUE(j.at("weave_options").at("undo_seam_blocking_on_block").get<bool>());
   EXPECT_FALSE(j.at("weave_options").at("undo_seam_blocking_shrinks").get<bool>());
   EXPECT_EQ(j.at("weave").at("seam_undo_retries").get<int>(), 0);
+  // The last ways after it (the fill, the reliable rules from the start): on, not needed here.
+  EXPECT_EQ(j.at("weave_options").at("fill_up_to").get<int>(), 200);
+  EXPECT_TRUE(j.at("weave_options").at("reliable_from_start").get<bool>());
+  EXPECT_EQ(j.at("weave").at("fill_hexes").get<int>(), 0);
+  EXPECT_EQ(j.at("weave").at("reliable_from_start").get<int>(), 0);
   const auto k = report_with("--keep-seam-blocking-shrinks");
   EXPECT_FALSE(k.at("weave_options").at("undo_seam_blocking_on_block").get<bool>());
   EXPECT_EQ(k.at("hexes").get<int>(), 10);

@@ -14,6 +14,7 @@
 #include "stcweave/stc/validate.hpp"
 #include "support/quadrangulations.hpp"
 #include "support/shapes.hpp"
+#include "weave/blocked_spheres.hpp"
 #include "weave/sphere_enum.hpp"
 
 namespace stcweave::primal {
@@ -200,6 +201,31 @@ SurfaceMesh on_sphere(const stc::QuadSurface& s) {
   SurfaceMesh copy = m;
   if (orient_outward(copy).flipped_quads > 0) m.points.col(2) *= -1.0;
   return m;
+}
+
+// What a user receives for a loop-clean sphere that only the weave's last ways complete (shape
+// 170 of the 20-quad closure under reliable, docs/weave-recovery.md "The fill"): the pipeline's
+// weave fills it by front moves itself, so the front-move stage's rescue does not run, and the
+// mesh is certified with the input as its boundary.
+TEST(SelfCrossing, PipelineMeshesASphereTheWeaveCompletesByItsFill) {
+  const SurfaceMesh mesh = on_sphere(test::blocked_sphere_170());
+  MeshOptions options;
+  options.weave.rules = weave::RuleSet::Reliable;
+  options.untangle = false;  // the weave is what is checked here
+  const MeshResult r = mesh_file(file_of(mesh, "filled"), options);
+  EXPECT_TRUE(r.validation.valid) << r.validation.summary();
+  EXPECT_FALSE(r.self_crossing.used) << "the weave completed: no rescue";
+  EXPECT_EQ(r.woven.stats.fill_hexes, 21U);
+  EXPECT_EQ(r.woven.complex.hexes.size(), 21U);
+  const stc::ValidationReport v = stc::validate_hex_complex(r.woven.complex, &mesh.surface);
+  EXPECT_TRUE(v.valid) << v.summary();
+  // Without the last ways, the stage's rescue meshes it instead.
+  MeshOptions without = options;
+  without.weave.fill_up_to = 0;
+  const MeshResult rescued = mesh_file(file_of(mesh, "filled"), without);
+  EXPECT_TRUE(rescued.validation.valid) << rescued.validation.summary();
+  EXPECT_TRUE(rescued.self_crossing.used);
+  EXPECT_EQ(rescued.woven.stats.fill_hexes, 0U);
 }
 
 // A loop-clean sphere whose weave blocks even with the block recovery (a defect of the weaver,

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "blocked_spheres.hpp"
 #include "recovery.hpp"
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/stc/validate.hpp"
@@ -18,39 +19,6 @@
 
 namespace stcweave::weave {
 namespace {
-
-stc::QuadSurface surface_of(std::size_t nodes, const std::vector<std::array<int, 4>>& quads) {
-  stc::QuadSurface s;
-  s.num_nodes = nodes;
-  for (const auto& q : quads)
-    s.quads.push_back({NodeId(q[0]), NodeId(q[1]), NodeId(q[2]), NodeId(q[3])});
-  return s;
-}
-
-// Loop-clean 20-quad spheres (22 nodes) of the closure whose weave blocks under one rule set
-// with the block recovery and the retry; the shape numbers are the loop-clean order of
-// SphereClosureSlow.TwentyQuads.
-stc::QuadSurface shape170() {  // blocks under reliable
-  return surface_of(
-      22, {{8, 0, 1, 2},    {12, 13, 14, 15}, {8, 2, 3, 4},     {9, 3, 2, 1},     {10, 4, 5, 6},
-           {9, 5, 4, 3},    {10, 6, 7, 11},   {9, 7, 6, 5},     {17, 18, 19, 20}, {11, 1, 0, 10},
-           {9, 1, 13, 12},  {1, 11, 14, 13},  {11, 16, 15, 14}, {16, 9, 12, 15},  {16, 11, 7, 9},
-           {10, 0, 18, 17}, {0, 21, 19, 18},  {21, 4, 20, 19},  {4, 10, 17, 20},  {21, 0, 8, 4}});
-}
-stc::QuadSurface shape377() {  // blocks under extended
-  return surface_of(
-      22, {{10, 0, 1, 2},   {11, 1, 0, 9},   {14, 2, 3, 4},    {11, 3, 2, 1},    {14, 4, 5, 6},
-           {11, 5, 4, 3},   {12, 6, 7, 8},   {11, 7, 6, 5},    {12, 8, 9, 13},   {11, 9, 8, 7},
-           {12, 20, 14, 6}, {13, 9, 0, 19},  {15, 16, 17, 18}, {14, 20, 16, 15}, {13, 19, 21, 16},
-           {10, 2, 18, 17}, {2, 14, 15, 18}, {19, 0, 10, 21},  {20, 12, 13, 16}, {21, 10, 17, 16}});
-}
-stc::QuadSurface shape158() {  // extended runs away (the rule budget), the fill stalls
-  return surface_of(
-      22, {{12, 13, 14, 15}, {11, 1, 0, 9},   {10, 2, 3, 4},    {11, 3, 2, 1},    {10, 4, 5, 6},
-           {11, 5, 4, 3},    {10, 6, 7, 8},   {17, 18, 19, 20}, {10, 8, 9, 0},    {11, 9, 8, 7},
-           {10, 16, 13, 12}, {16, 1, 14, 13}, {1, 2, 15, 14},   {2, 10, 12, 15},  {16, 10, 0, 1},
-           {11, 7, 18, 17},  {7, 6, 19, 18},  {6, 21, 20, 19},  {21, 11, 17, 20}, {21, 6, 5, 11}});
-}
 
 WeaveOptions options_for(RuleSet rules, bool last_ways) {
   WeaveOptions o;
@@ -73,7 +41,7 @@ WeaveResult woven_by_the_last_ways(const stc::QuadSurface& s, RuleSet rules) {
 }
 
 TEST(Fill, CompletesTheReliableWeaveOfAShapeTheRecoveryLeavesBlocked) {
-  const WeaveResult r = woven_by_the_last_ways(shape170(), RuleSet::Reliable);
+  const WeaveResult r = woven_by_the_last_ways(test::blocked_sphere_170(), RuleSet::Reliable);
   EXPECT_EQ(r.stats.fill_hexes, 21U);
   EXPECT_EQ(r.complex.hexes.size(), 21U) << "the input's front filled before any rule";
   EXPECT_EQ(std::count(r.hex_rule.begin(), r.hex_rule.end(), "fill"), 21);
@@ -84,7 +52,7 @@ TEST(Fill, CompletesTheReliableWeaveOfAShapeTheRecoveryLeavesBlocked) {
 TEST(Fill, CompletesAnExtendedWeaveWithHexesThatJoinTheWovenComplex) {
   // Without `strict_contacts` the fill's fourth hex would share five nodes with its first one
   // (the weave's check refuses it), and the reliable weave from the start makes 63 hexes.
-  const WeaveResult r = woven_by_the_last_ways(shape377(), RuleSet::Extended);
+  const WeaveResult r = woven_by_the_last_ways(test::blocked_sphere_377(), RuleSet::Extended);
   EXPECT_EQ(r.stats.fill_hexes, 13U);
   EXPECT_EQ(r.complex.hexes.size(), 13U);
   EXPECT_EQ(r.stats.reliable_from_start, 0U);
@@ -92,22 +60,23 @@ TEST(Fill, CompletesAnExtendedWeaveWithHexesThatJoinTheWovenComplex) {
 }
 
 TEST(Fill, ExtendedWeavesWithTheReliableRulesFromTheStartWhenTheFillStalls) {
-  const WeaveResult r = woven_by_the_last_ways(shape158(), RuleSet::Extended);
+  const WeaveResult r = woven_by_the_last_ways(test::blocked_sphere_158(), RuleSet::Extended);
   EXPECT_EQ(r.stats.fill_hexes, 0U);
   EXPECT_EQ(r.stats.reliable_from_start, 1U);
   // The same complex as the reliable weave of the shape.
-  const WeaveResult reliable = weave(shape158(), options_for(RuleSet::Reliable, false));
+  const WeaveResult reliable =
+      weave(test::blocked_sphere_158(), options_for(RuleSet::Reliable, false));
   EXPECT_EQ(r.complex.hexes, reliable.complex.hexes);
 }
 
 TEST(Fill, IsNotTriedUnderReliableFromStartOrWithTheRecoveryOff) {
   WeaveOptions o = options_for(RuleSet::Reliable, true);
   o.block_recovery = BlockRecovery::Off;
-  EXPECT_THROW((void)weave(shape170(), o), WeaveError);
+  EXPECT_THROW((void)weave(test::blocked_sphere_170(), o), WeaveError);
   WeaveOptions e = options_for(RuleSet::Extended, true);
   e.fill_up_to = 0;
   e.reliable_from_start = false;
-  EXPECT_THROW((void)weave(shape158(), e), WeaveError);
+  EXPECT_THROW((void)weave(test::blocked_sphere_158(), e), WeaveError);
 }
 
 TEST(Fill, ClosesACubeFrontWithOneHex) {
