@@ -297,24 +297,27 @@ WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options,
   // the caller gets; when every way fails, the first weave's trace and error are given.
   std::vector<TraceEvent> first_trace;
   std::vector<TraceEvent> kept_trace;
-  const auto attempt = [&](WeaveOptions o, std::vector<TraceEvent>& held, const auto& run) {
+  // `o` with its trace events held in `held`.
+  const auto holding = [&](WeaveOptions o, std::vector<TraceEvent>& held) {
     if (options.on_trace) o.on_trace = [&held](const TraceEvent& e) { held.push_back(e); };
-    return run(o);
+    return o;
   };
-  const auto give = [&](WeaveResult r, std::vector<TraceEvent>& held) {
+  const auto forward = [&](const std::vector<TraceEvent>& held) {
     for (const TraceEvent& e : held) options.on_trace(e);
+  };
+  const auto give = [&](WeaveResult r, const std::vector<TraceEvent>& held) {
+    forward(held);
     return r;
   };
   try {
-    return give(attempt(options, first_trace, [&](const WeaveOptions& o) { return once(o); }),
-                first_trace);
+    return give(once(holding(options, first_trace)), first_trace);
   } catch (const WeaveError&) {
     const std::exception_ptr blocked = std::current_exception();
     // Undoing the shrinks that leave a seam blocked ("Seams left blocked: the retry").
     WeaveOptions undo = options;
     undo.undo_seam_blocking_shrinks = true;
     try {
-      WeaveResult r = attempt(undo, kept_trace, [&](const WeaveOptions& o) { return once(o); });
+      WeaveResult r = once(holding(undo, kept_trace));
       r.stats.seam_undo_retries = 1;
       return give(std::move(r), kept_trace);
     } catch (const WeaveError&) {
@@ -336,12 +339,11 @@ WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options,
           return !fill_blocked_front(state, ctx, options.fill_up_to);
         };
         try {
-          WeaveResult r = attempt(fill, kept_trace, [&](const WeaveOptions& o) {
-            return once(o, try_fill, [&](WeaveState& state, WeaveContext& ctx) {
-              if (way == 2 && !try_fill(state, ctx))
-                throw WeaveError("weave: the fill of the input left faces");
-            });
-          });
+          WeaveResult r =
+              once(holding(fill, kept_trace), try_fill, [&](WeaveState& state, WeaveContext& ctx) {
+                if (way == 2 && !try_fill(state, ctx))
+                  throw WeaveError("weave: the fill of the input left faces");
+              });
           r.stats.seam_undo_retries = way == 1 ? 1 : 0;
           return give(std::move(r), kept_trace);
         } catch (const WeaveError&) {
@@ -356,15 +358,13 @@ WeaveResult weave(const stc::QuadSurface& surface, const WeaveOptions& options,
       plain.rules = RuleSet::Reliable;
       plain.reliable_from_start = false;
       try {
-        WeaveResult r = attempt(plain, kept_trace, [&](const WeaveOptions& o) {
-          return weave(surface, o, side_angles);
-        });
+        WeaveResult r = weave(surface, holding(plain, kept_trace), side_angles);
         r.stats.reliable_from_start = 1;
         return give(std::move(r), kept_trace);
       } catch (const WeaveError&) {
       }
     }
-    for (const TraceEvent& e : first_trace) options.on_trace(e);
+    forward(first_trace);
     std::rethrow_exception(blocked);
   }
 }
