@@ -149,37 +149,30 @@ std::optional<std::string> WeaveState::merge_conflict(NodeId x, NodeId y, NodeId
   // Every pair (a hex at x, a hex at y) is compared; each hex's image is made once (at a
   // node of high valence the pairs are many: measured on fandisk_quads, comparing each pair
   // from scratch was the weave's largest cost).
-  const auto images = [&](const std::vector<HexId>& hexes) {
-    std::vector<NodeImage> out;
-    out.reserve(hexes.size());
-    for (HexId h : hexes) out.push_back(node_image(front, woven.hexes[h.index()], gone, keep));
-    return out;
-  };
+  // (The images of the hexes at y go in a buffer kept between calls, and the message is only
+  // written for a conflict: this runs before every seam, most of a weave's rules.)
   const std::vector<HexId>& at_x = woven.hexes_at[x.index()];
   const std::vector<HexId>& at_y = woven.hexes_at[y.index()];
-  const std::vector<NodeImage> image_x = images(at_x);
-  const std::vector<NodeImage> image_y = images(at_y);
-  for (std::size_t i = 0; i < at_x.size(); ++i) {
-    const HexId h1 = at_x[i];
+  std::vector<NodeImage>& image_y = merge_images_;
+  image_y.clear();
+  for (HexId h : at_y) image_y.push_back(node_image(front, woven.hexes[h.index()], gone, keep));
+  const auto conflict = [&](const char* verb, HexId h1, HexId h2, const char* rest) {
+    return "merging " + x.str() + " and " + y.str() + " would " + verb + h1.str() + " and " +
+           h2.str() + rest;
+  };
+  for (const HexId h1 : at_x) {
+    const NodeImage image_x = node_image(front, woven.hexes[h1.index()], gone, keep);
     for (std::size_t j = 0; j < at_y.size(); ++j) {
       const HexId h2 = at_y[j];
-      const std::size_t common = count_common(image_x[i], image_y[j]);
+      const std::size_t common = count_common(image_x, image_y[j]);
       if (common < 4) continue;
-      const std::string pair = h1.str() + " and " + h2.str();
-      if (common > 4) {
-        return "merging " + x.str() + " and " + y.str() + " would make " + pair +
-               " share more than one face";
-      }
+      if (common > 4) return conflict("make ", h1, h2, " share more than one face");
       const int f1 = face_within(h1, h2), f2 = face_within(h2, h1);
-      if (f1 < 0 || f2 < 0) {
-        return "merging " + x.str() + " and " + y.str() + " would make " + pair +
-               " share four nodes that are not a common face";
-      }
+      if (f1 < 0 || f2 < 0)
+        return conflict("make ", h1, h2, " share four nodes that are not a common face");
       if (woven.dual[h1.index()][static_cast<std::size_t>(f1)].id >= 0 ||
-          woven.dual[h2.index()][static_cast<std::size_t>(f2)].id >= 0) {
-        return "merging " + x.str() + " and " + y.str() + " would put a face of " + pair +
-               " in more than two hexes";
-      }
+          woven.dual[h2.index()][static_cast<std::size_t>(f2)].id >= 0)
+        return conflict("put a face of ", h1, h2, " in more than two hexes");
     }
   }
   return std::nullopt;

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 
+#include <boost/container/small_vector.hpp>
+
 #include "stcweave/weave/rules.hpp"
 
 namespace stcweave::weave {
@@ -59,9 +61,12 @@ RuleResult seam(WeaveState& state, WeaveContext& ctx, NodeId v) {
     return RuleResult::refused(*conflict);
   }
   // Faces that the merge makes coincide, and the check that the front is not pinched.
-  std::vector<std::pair<FaceIndex, FaceIndex>> coincident;
+  // (Inline buffers: a seam is most of a weave's rules, and these hold a few entries each;
+  // heap vectors here cost four allocations per seam.)
+  using Nodes = boost::container::small_vector<NodeId, 24>;
+  boost::container::small_vector<std::pair<FaceIndex, FaceIndex>, 4> coincident;
   if (x != y) {
-    const auto neighbours = [&front](NodeId n, FaceIndex skip, std::vector<NodeId>& out) {
+    const auto neighbours = [&front](NodeId n, FaceIndex skip, Nodes& out) {
       for (FaceIndex f : front.faces_at(n)) {
         if (f == skip) continue;
         const int c = front.corner_of(f, n);
@@ -69,7 +74,7 @@ RuleResult seam(WeaveState& state, WeaveContext& ctx, NodeId v) {
         out.push_back(quad_at(front.face(f).nodes, c + 3));
       }
     };
-    std::vector<NodeId> nx, ny, covered;
+    Nodes nx, ny, covered;
     neighbours(x, fa, nx);
     neighbours(y, fb, ny);
     for (FaceIndex f : front.faces_at(x)) {

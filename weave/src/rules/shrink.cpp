@@ -110,10 +110,13 @@ class StripIndex {
       }
       if (!repair(*start, is_removed)) build(trace_strip(front_, face_of(*start), start->entry));
     }
-    // Forget their refusals and re-file the side nodes whose valence changed.
+    // Forget their refusals and re-file the side nodes whose valence changed (each node once:
+    // the log names a node once per changed face holding it).
+    const std::uint32_t visit = logged_.fresh(front_.num_nodes());
     for (NodeId v : log.nodes) {
       forget_refusal(v);
-      if (v.index() >= front_.num_nodes()) continue;
+      if (v.index() >= front_.num_nodes() || logged_.is(v.index(), visit)) continue;
+      logged_.set(v.index(), visit);
       const std::size_t k = front_.valence(v);
       for (FaceIndex f : front_.faces_at(v)) {
         for (int e = 0; e < 4; ++e) {
@@ -400,6 +403,7 @@ class StripIndex {
   std::vector<std::uint8_t> refused_;  ///< per node, 1: `known_refused`
   Strip fresh_;
   Marks seen_;
+  Marks logged_;  ///< `update`'s nodes already re-filed
   std::uint32_t walk_seen_ = 0;
   std::size_t walk_valence_ = 0, walk_left_ = 0;
   bool walk_started_ = false;

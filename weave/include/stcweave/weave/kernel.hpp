@@ -137,6 +137,9 @@ struct WeaveState {
   };
   std::vector<WovenChange> journal_;
   int open_checkpoints_ = 0;
+  /// `merge_conflict`'s scratch: the sorted node images of the hexes at one node, kept
+  /// between calls so that the check before every seam allocates nothing.
+  mutable std::vector<std::array<NodeId, 8>> merge_images_;
 };
 
 /// Scratch marks over nodes or faces: a fresh stamp unmarks every entry in O(1).
