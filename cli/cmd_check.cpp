@@ -95,7 +95,7 @@ int run_check(const CheckArgs& a) {
     expected = match_boundary(mesh, primal::surface_of(bfile), a.boundary);
   }
   const stc::ValidationReport v =
-      stc::validate_hex_complex(mesh.complex, expected ? &*expected : nullptr);
+      stc::validate_hex_complex(mesh.complex, expected ? &*expected : nullptr, false, true);
   const primal::QualitySummary q = primal::summarize_quality(mesh);
   if (a.json) {
     nlohmann::json j;
@@ -133,7 +133,8 @@ Action add_check_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "check",
       "Certify a hex mesh: 8 distinct nodes per hex, faces in at most two hexes, two hexes "
-      "share at most one face, one cycle (fan) of hexes around every interior (boundary) edge, "
+      "share at most one face, two hexes sharing four or more nodes share exactly a face of both, "
+      "one cycle (fan) of hexes around every interior (boundary) edge, "
       "vertex links, Euler characteristic; with --boundary, the faces used once must be "
       "exactly that surface's quads (nodes matched by coordinates). Exit code 0 when valid, "
       "2 when not.");

@@ -408,6 +408,8 @@ int run_mesh(const MeshArgs& a) {
   report["interior_nodes"] = r.mesh.complex.num_nodes - r.woven.num_input_nodes;
   report["valid"] = r.validation.valid;
   report["validation"] = r.validation.summary();
+  report["shared_nodes_not_a_face"] = {{"count", r.shared_nodes.count},
+                                       {"examples", r.shared_nodes.examples}};
   report["sheets"] = stc.sheets.size();
   report["chords"] = stc.chords.size();
   report["blind_chords"] = blind_chords;
@@ -446,6 +448,11 @@ int run_mesh(const MeshArgs& a) {
     report["pillow"]["unpinch_hexes"] = r.pillow.unpinch_hexes;
     report["pillow"]["pinched_left"] = r.pillow.pinched_left;
   }
+  // The harmonic placement of the interior nodes (recovery): the start of the positioning.
+  report["harmonic"] = {{"free_nodes", r.harmonic.free_nodes},
+                        {"iterations", r.harmonic.iterations},
+                        {"residual", r.harmonic.residual},
+                        {"levels", r.harmonic.levels}};
   report["untangled"] = options.untangle;
   if (options.untangle) report["position"] = position_json(r.position);
   const auto& s = r.woven.stats;
@@ -572,8 +579,16 @@ int run_mesh(const MeshArgs& a) {
       std::cout << "\n";
     }
     std::cout << "pillow     " << r.pillow.reason << "\n";
-    std::cout << "valid      " << (r.validation.valid ? "yes" : "NO: " + r.validation.summary())
-              << "\n";
+    std::cout << "valid      " << (r.validation.valid ? "yes" : "NO: " + r.validation.summary());
+    if (r.shared_nodes.count > 0) {
+      // Not refused yet: said on the line the user reads for validity.
+      std::cout << "; but " << r.shared_nodes.count
+                << " hex pair(s) share four or more nodes that are not a face of both (e.g. "
+                << r.shared_nodes.examples.front()
+                << "): the mesh then has a negative Jacobian inside some hex, whatever the corners "
+                   "say (docs/self-intersecting-loops.md)";
+    }
+    std::cout << "\n";
     std::cout << "quality    min scaled Jacobian " << r.quality.min_scaled_jacobian << ", mean "
               << r.quality.mean_scaled_jacobian << ", inverted " << r.quality.inverted;
     if (options.untangle) {

@@ -451,6 +451,8 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
   r.quality = summarize_quality(r.mesh);
   r.seconds.quality = clock.lap();
 
+  r.shared_nodes = stc::shared_nodes_not_a_face(r.mesh.complex);
+
   if (stc_beside) {
     r.stc = stc_beside->get();
     r.seconds.stc = stc_beside->seconds();

@@ -1,6 +1,8 @@
 #include "stcweave/stc/validate.hpp"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <numeric>
 #include <sstream>
 
@@ -95,11 +97,119 @@ class Collector {
   Violation violation_;
 };
 
+/// The corner masks (bit i: corner i) of the six faces of a hex.
+constexpr std::array<std::uint8_t, 6> make_face_masks() {
+  std::array<std::uint8_t, 6> t{};
+  for (std::size_t f = 0; f < 6; ++f) {
+    int all = 0;
+    for (const int c : kHexFaces[f]) all |= 1 << c;
+    t[f] = static_cast<std::uint8_t>(all);
+  }
+  return t;
+}
+constexpr auto kFaceMasks = make_face_masks();
+
+bool is_face_mask(unsigned mask) {
+  return std::find(kFaceMasks.begin(), kFaceMasks.end(), mask) != kFaceMasks.end();
+}
+
+/// Every pair of well-formed hexes sharing four or more nodes that are not exactly a face of
+/// both: a face and one more node, two opposite edges (a diagonal section), a face of one
+/// that is a section of the other, two hexes on the same 8 nodes. Such hexes overlap or one
+/// of them is flat, whatever the positions. Fewer shared nodes are not refused here (see
+/// validate.hpp). Reported as `h3+h8:n1,n4,n5,n9,n12`, the pair then the shared nodes in
+/// increasing order.
+///
+/// Each pair is met once, from its smaller hex: a CSR of the hex corners at each node
+/// (hexes in increasing order), and per hex the masks of the corners it shares with each
+/// larger hex, on both sides. Time: linear in the sum over hexes of the hexes at their
+/// nodes.
+void find_shared_nodes_not_a_face(const HexComplex& complex, const std::vector<bool>& good,
+                                  Collector& collector) {
+  const std::size_t num_hexes = complex.hexes.size();
+  const std::size_t num_nodes = complex.num_nodes;
+  std::vector<std::uint32_t> node_begin(num_nodes + 1, 0);
+  for (std::size_t h = 0; h < num_hexes; ++h) {
+    if (!good[h]) continue;
+    for (const NodeId v : complex.hexes[h]) ++node_begin[v.index() + 1];
+  }
+  for (std::size_t v = 0; v < num_nodes; ++v) node_begin[v + 1] += node_begin[v];
+  std::vector<std::uint32_t> corners(node_begin[num_nodes]);
+  {
+    std::vector<std::uint32_t> fill(node_begin.begin(), node_begin.end() - 1);
+    for (std::size_t h = 0; h < num_hexes; ++h) {
+      if (!good[h]) continue;
+      for (std::size_t i = 0; i < 8; ++i)
+        corners[fill[complex.hexes[h][i].index()]++] = static_cast<std::uint32_t>(8 * h + i);
+    }
+  }
+  // masks[g]: the corners of h (low byte) and of g (high byte) at the nodes h and g share.
+  std::vector<std::uint16_t> masks(num_hexes, 0);
+  std::vector<std::uint32_t> met;  // the larger hexes sharing a node with h
+  std::vector<std::pair<std::uint32_t, std::uint16_t>> bad;  // those meeting in no cell
+  for (std::size_t h = 0; h < num_hexes; ++h) {
+    if (!good[h]) continue;
+    const Hex& hex = complex.hexes[h];
+    for (std::size_t i = 0; i < 8; ++i) {
+      const std::size_t v = hex[i].index();
+      // The larger hexes at v, from the end of its list.
+      for (std::uint32_t k = node_begin[v + 1]; k > node_begin[v]; --k) {
+        const std::uint32_t c = corners[k - 1];
+        const std::uint32_t g = c / 8;
+        if (g <= h) break;
+        if (masks[g] == 0) met.push_back(g);
+        masks[g] = static_cast<std::uint16_t>(masks[g] | (1U << i) | (256U << (c % 8)));
+      }
+    }
+    for (const std::uint32_t g : met) {
+      const std::uint16_t m = masks[g];
+      masks[g] = 0;
+      const unsigned mine = m & 0xffU;
+      const auto shared = std::popcount(mine);
+      if (shared < 4 || (shared == 4 && is_face_mask(mine) && is_face_mask(m >> 8U))) continue;
+      bad.emplace_back(g, m);
+    }
+    std::sort(bad.begin(), bad.end());  // reported in the order of the pairs
+    for (const auto& [g, m] : bad) {
+      std::vector<std::int32_t> shared;
+      for (std::size_t i = 0; i < 8; ++i)
+        if ((m >> i) & 1U) shared.push_back(hex[i].value());
+      std::sort(shared.begin(), shared.end());
+      std::string example = HexId(h).str() + "+" + HexId(std::size_t{g}).str() + ":";
+      for (std::size_t i = 0; i < shared.size(); ++i) {
+        if (i > 0) example += ',';
+        example += NodeId(shared[i]).str();
+      }
+      collector.add(example);
+    }
+    met.clear();
+    bad.clear();
+  }
+}
+
 std::string face_slot_str(std::size_t slot) {
   return HexId(slot / 6).str() + ".f" + std::to_string(slot % 6);
 }
 
 }  // namespace
+
+Violation shared_nodes_not_a_face(const HexComplex& complex) {
+  std::vector<bool> good(complex.hexes.size(), true);
+  for (std::size_t h = 0; h < complex.hexes.size(); ++h) {
+    const Hex& hex = complex.hexes[h];
+    for (std::size_t i = 0; i < 8 && good[h]; ++i) {
+      if (!hex[i].is_valid() || hex[i].index() >= complex.num_nodes) good[h] = false;
+      for (std::size_t j = 0; j < i; ++j)
+        if (hex[i] == hex[j]) good[h] = false;
+    }
+  }
+  Collector collector(Invariant::SharedNodesNotAFace);
+  find_shared_nodes_not_a_face(complex, good, collector);
+  ValidationReport report;
+  collector.flush(report);
+  if (report.violations.empty()) return Violation{Invariant::SharedNodesNotAFace, 0, {}};
+  return std::move(report.violations.front());
+}
 
 std::string_view invariant_name(Invariant invariant) {
   switch (invariant) {
@@ -111,6 +221,8 @@ std::string_view invariant_name(Invariant invariant) {
       return "face_in_three_hexes";
     case Invariant::HexesShareTwoFaces:
       return "hexes_share_two_faces";
+    case Invariant::SharedNodesNotAFace:
+      return "shared_nodes_not_a_face";
     case Invariant::FaceOrientation:
       return "face_orientation";
     case Invariant::InteriorEdgeCycle:
@@ -216,7 +328,7 @@ std::vector<PinchedFaces> pinched_faces(const HexComplex& complex) {
 
 ValidationReport validate_hex_complex(const HexComplex& complex,
                                       const QuadSurface* expected_boundary,
-                                      bool check_pinched_faces) {
+                                      bool check_pinched_faces, bool check_shared_nodes) {
   ValidationReport report;
   const std::size_t num_hexes = complex.hexes.size();
   const std::size_t num_nodes = complex.num_nodes;
@@ -315,6 +427,11 @@ ValidationReport validate_hex_complex(const HexComplex& complex,
                   HexId(std::size_t{pairs[i].second}).str());
     }
     share.flush(report);
+    if (check_shared_nodes) {
+      Collector shared_nodes(Invariant::SharedNodesNotAFace);
+      find_shared_nodes_not_a_face(complex, good, shared_nodes);
+      shared_nodes.flush(report);
+    }
     orientation.flush(report);
   }
 

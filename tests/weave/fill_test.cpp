@@ -104,5 +104,24 @@ TEST(Fill, RefusesALargeFrontAndLeavesTheStateAsItWas) {
   EXPECT_EQ(state.stats.fill_hexes, 0U);
 }
 
+TEST(Fill, RefusesAnOddFrontAndLeavesTheStateAsItWas) {
+  // Three lunes (N, x_i, S, x_i+1) around two poles: a closed oriented front of 3 faces, which
+  // no set of hexes fills (every hex glues faces in pairs).
+  stc::QuadSurface lunes;
+  lunes.num_nodes = 5;
+  const NodeId north(3), south(4);
+  for (int i = 0; i < 3; ++i) lunes.quads.push_back({north, NodeId(i), south, NodeId((i + 1) % 3)});
+  WeaveState state(lunes);
+  ASSERT_EQ(state.front.check_invariants(), std::nullopt);
+  WeaveOptions options;
+  WeaveContext ctx(options, nullptr, 1000);
+  const auto why = fill_blocked_front(state, ctx, 200);
+  ASSERT_TRUE(why.has_value());
+  EXPECT_NE(why->find("odd number of faces"), std::string::npos) << *why;
+  EXPECT_EQ(state.front.num_faces(), 3U);
+  EXPECT_TRUE(state.woven.hexes.empty());
+  EXPECT_EQ(state.stats.fill_hexes, 0U);
+}
+
 }  // namespace
 }  // namespace stcweave::weave

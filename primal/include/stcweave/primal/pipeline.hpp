@@ -115,6 +115,11 @@ struct MeshResult {
   SolidsReport solids;
   /// Validation of the final complex (`mesh.complex`, after pillowing) against the input.
   stc::ValidationReport validation;
+  /// The output's hex pairs sharing four or more nodes that are not a face of both
+  /// (`stc::shared_nodes_not_a_face`): not refused yet (docs/self-intersecting-loops.md
+  /// "Hexes sharing four nodes off a face"); a mesh with such a pair has a negative Jacobian
+  /// inside some hex, whatever the corners say.
+  stc::Violation shared_nodes{stc::Invariant::SharedNodesNotAFace, 0, {}};
   HarmonicReport harmonic;
   /// What the pillow stage decided and did. When it pillowed, `mesh` has the pillow's nodes
   /// and hexes appended while `woven` stays the weave's own result.

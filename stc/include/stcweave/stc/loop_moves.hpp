@@ -128,9 +128,10 @@ struct LoopMoveOptions {
   bool check_scores = false;
   /// Also refuse a hex that would share more than four nodes with an attached hex, or four
   /// nodes with one whose face it is not built on (the weave's own check of a hex put on its
-  /// front; `stc::validate_hex_complex` refuses only two shared faces). Off by default; the
-  /// weave's fill of a blocked front (`weave::WeaveOptions::fill_up_to`) sets it, so that
-  /// every hex of a fill can join the woven complex.
+  /// front; `stc::validate_hex_complex` refuses these too when asked, as
+  /// `SharedNodesNotAFace`, and the pipeline asks it of every complex it outputs). Off by
+  /// default; the weave's fill of a blocked front (`weave::WeaveOptions::fill_up_to`) sets it,
+  /// so that every hex of a fill can join the woven complex.
   bool strict_contacts = false;
   /// Called when set: every 10th hex attached, and every `progress_every` evaluations (a
   /// look-ahead can evaluate for seconds without attaching a hex). Reports only; the search
