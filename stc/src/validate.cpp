@@ -97,6 +97,20 @@ class Collector {
   Violation violation_;
 };
 
+/// Whether a node of `hex` is invalid or not below `num_nodes` (`NodeOutOfRange`).
+bool node_out_of_range(const Hex& hex, std::size_t num_nodes) {
+  return std::any_of(hex.begin(), hex.end(),
+                     [&](NodeId v) { return !v.is_valid() || v.index() >= num_nodes; });
+}
+
+/// Whether `hex` holds a node twice (`RepeatedNode`).
+bool repeated_node(const Hex& hex) {
+  for (std::size_t i = 0; i < 8; ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (hex[i] == hex[j]) return true;
+  return false;
+}
+
 /// The corner masks (bit i: corner i) of the six faces of a hex.
 constexpr std::array<std::uint8_t, 6> make_face_masks() {
   std::array<std::uint8_t, 6> t{};
@@ -115,10 +129,10 @@ bool is_face_mask(unsigned mask) {
 
 /// Every pair of well-formed hexes sharing four or more nodes that are not exactly a face of
 /// both: a face and one more node, two opposite edges (a diagonal section), a face of one
-/// that is a section of the other, two hexes on the same 8 nodes. Such hexes overlap or one
-/// of them is flat, whatever the positions. Fewer shared nodes are not refused here (see
-/// validate.hpp). Reported as `h3+h8:n1,n4,n5,n9,n12`, the pair then the shared nodes in
-/// increasing order.
+/// that is a section of the other, two hexes on the same 8 nodes. Some hex of such a complex
+/// has a negative Jacobian somewhere, whatever the positions (validate.hpp). Fewer shared
+/// nodes are not refused here. Reported as `h3+h8:n1,n4,n5,n9,n12`, the pair then the shared nodes
+/// in increasing order.
 ///
 /// Each pair is met once, from its smaller hex: a CSR of the hex corners at each node
 /// (hexes in increasing order), and per hex the masks of the corners it shares with each
@@ -146,7 +160,7 @@ void find_shared_nodes_not_a_face(const HexComplex& complex, const std::vector<b
   // masks[g]: the corners of h (low byte) and of g (high byte) at the nodes h and g share.
   std::vector<std::uint16_t> masks(num_hexes, 0);
   std::vector<std::uint32_t> met;  // the larger hexes sharing a node with h
-  std::vector<std::pair<std::uint32_t, std::uint16_t>> bad;  // those meeting in no cell
+  std::vector<std::pair<std::uint32_t, std::uint16_t>> bad;  // those sharing 4+ off a face
   for (std::size_t h = 0; h < num_hexes; ++h) {
     if (!good[h]) continue;
     const Hex& hex = complex.hexes[h];
@@ -194,14 +208,10 @@ std::string face_slot_str(std::size_t slot) {
 }  // namespace
 
 Violation shared_nodes_not_a_face(const HexComplex& complex) {
-  std::vector<bool> good(complex.hexes.size(), true);
+  std::vector<bool> good(complex.hexes.size());
   for (std::size_t h = 0; h < complex.hexes.size(); ++h) {
     const Hex& hex = complex.hexes[h];
-    for (std::size_t i = 0; i < 8 && good[h]; ++i) {
-      if (!hex[i].is_valid() || hex[i].index() >= complex.num_nodes) good[h] = false;
-      for (std::size_t j = 0; j < i; ++j)
-        if (hex[i] == hex[j]) good[h] = false;
-    }
+    good[h] = !node_out_of_range(hex, complex.num_nodes) && !repeated_node(hex);
   }
   Collector collector(Invariant::SharedNodesNotAFace);
   find_shared_nodes_not_a_face(complex, good, collector);
@@ -341,13 +351,8 @@ ValidationReport validate_hex_complex(const HexComplex& complex,
     Collector repeated(Invariant::RepeatedNode);
     for (std::size_t h = 0; h < num_hexes; ++h) {
       const Hex& hex = complex.hexes[h];
-      bool bad_range = false;
-      bool bad_repeat = false;
-      for (std::size_t i = 0; i < 8; ++i) {
-        if (!hex[i].is_valid() || hex[i].index() >= num_nodes) bad_range = true;
-        for (std::size_t j = 0; j < i; ++j)
-          if (hex[i] == hex[j]) bad_repeat = true;
-      }
+      const bool bad_range = node_out_of_range(hex, num_nodes);
+      const bool bad_repeat = repeated_node(hex);
       if (bad_range) out_of_range.add(HexId(h).str());
       if (bad_repeat) repeated.add(HexId(h).str());
       good[h] = !bad_range && !bad_repeat;
