@@ -580,14 +580,6 @@ int run_mesh(const MeshArgs& a) {
     }
     std::cout << "pillow     " << r.pillow.reason << "\n";
     std::cout << "valid      " << (r.validation.valid ? "yes" : "NO: " + r.validation.summary());
-    if (r.shared_nodes.count > 0) {
-      // Not refused yet: said on the line the user reads for validity.
-      std::cout << "; but " << r.shared_nodes.count
-                << " hex pair(s) share four or more nodes that are not a face of both (e.g. "
-                << r.shared_nodes.examples.front()
-                << "): the mesh then has a negative Jacobian inside some hex, whatever the corners "
-                   "say (docs/self-intersecting-loops.md)";
-    }
     std::cout << "\n";
     std::cout << "quality    min scaled Jacobian " << r.quality.min_scaled_jacobian << ", mean "
               << r.quality.mean_scaled_jacobian << ", inverted " << r.quality.inverted;

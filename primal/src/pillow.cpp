@@ -5,6 +5,9 @@
 #include <cmath>
 #include <numeric>
 #include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "shells.hpp"
 #include "stcweave/primal/quality.hpp"
@@ -51,6 +54,44 @@ std::string format_value(double v) {
   s.precision(3);
   s << v;
   return s.str();
+}
+
+/// For each shell, a pair of its boundary quads that share two nodes that are not an edge of
+/// both (empty when none): their pillow hexes would share those two nodes and their two copies,
+/// four nodes that are not a face, so the layer would not be a valid complex.
+std::vector<std::string> diagonal_contacts(const stc::QuadSurface& boundary,
+                                           const std::vector<int>& shell, std::size_t shells) {
+  std::vector<std::pair<NodeId, std::size_t>> at;  // (node, quad), sorted by node
+  for (std::size_t q = 0; q < boundary.quads.size(); ++q)
+    for (const NodeId v : boundary.quads[q]) at.emplace_back(v, q);
+  std::sort(at.begin(), at.end());
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;  // one per node two quads share
+  for (std::size_t i = 0; i < at.size();) {
+    std::size_t j = i + 1;
+    while (j < at.size() && at[j].first == at[i].first) ++j;
+    for (std::size_t a = i; a < j; ++a)
+      for (std::size_t b = a + 1; b < j; ++b) pairs.emplace_back(at[a].second, at[b].second);
+    i = j;
+  }
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<std::string> found(shells);
+  for (std::size_t i = 0; i < pairs.size();) {
+    std::size_t j = i + 1;
+    while (j < pairs.size() && pairs[j] == pairs[i]) ++j;
+    const auto [a, b] = pairs[i];
+    const bool two = j - i == 2;
+    i = j;
+    if (!two) continue;
+    const stc::Quad& qa = boundary.quads[a];
+    const stc::Quad& qb = boundary.quads[b];
+    const auto in_b = [&qb](NodeId v) { return std::find(qb.begin(), qb.end(), v) != qb.end(); };
+    bool edge = false;
+    for (std::size_t k = 0; k < 4 && !edge; ++k) edge = in_b(qa[k]) && in_b(qa[(k + 1) % 4]);
+    const int sh = shell[qa[0].index()];
+    if (edge || sh < 0 || !found[static_cast<std::size_t>(sh)].empty()) continue;
+    found[static_cast<std::size_t>(sh)] = QuadId(a).str() + " and " + QuadId(b).str();
+  }
+  return found;
 }
 
 }  // namespace
@@ -144,6 +185,21 @@ PillowReport pillow(HexMesh& mesh, const stc::QuadSurface& boundary, const Pillo
       }
     }
   }
+  // A shell two of whose quads meet at two opposite nodes is not pillowed (the layer would
+  // hold two hexes sharing four nodes off a face: not a valid complex).
+  std::string skipped;
+  const std::vector<std::string> diagonal = diagonal_contacts(boundary, shell, r.shells);
+  for (std::size_t sh = 0; sh < r.shells; ++sh) {
+    if (!selected[sh] || diagonal[sh].empty()) continue;
+    selected[sh] = false;
+    skipped += (skipped.empty() ? "" : ", ") + diagonal[sh];
+  }
+  if (!skipped.empty()) {
+    skipped =
+        "; a shell left unpillowed because two of its quads share two nodes that are not "
+        "an edge (" +
+        skipped + "): their pillow hexes would share four nodes off a face";
+  }
   r.shells_pillowed = static_cast<std::size_t>(std::count(selected.begin(), selected.end(), true));
   r.applied = r.shells_pillowed > 0;
 
@@ -160,7 +216,8 @@ PillowReport pillow(HexMesh& mesh, const stc::QuadSurface& boundary, const Pillo
       r.reason = "never: not pillowed (" + worst + ")";
       break;
     case PillowMode::Always:
-      r.reason = "always: every shell pillowed (" + worst + ")";
+      r.reason =
+          (skipped.empty() ? "always: every shell pillowed (" : "always: pillowed (") + worst + ")";
       break;
     case PillowMode::Auto:
       r.reason = r.applied ? "auto: pillowed " + std::to_string(r.shells_pillowed) + " of " +
@@ -169,6 +226,7 @@ PillowReport pillow(HexMesh& mesh, const stc::QuadSurface& boundary, const Pillo
                            : "auto: not pillowed: " + worst;
       break;
   }
+  r.reason += skipped;
   if (!r.applied) return r;
 
   // Interior copies of the boundary nodes of the selected shells, in node order.

@@ -113,7 +113,10 @@ TEST(LoopMoves, MovesKeepTheFrontAndTheAttachedHexesValid) {
   }
   EXPECT_GT(checked, 20U);
   EXPECT_GT(with_moves, 10U);
-  EXPECT_GT(simple, 10U);
+  // With `strict_contacts` (the default since 2026-12-07: no two attached hexes share four
+  // nodes off a face) the search leaves 3 of these fronts simple; without it, more than 10,
+  // but with attached hexes that no valid complex can hold.
+  EXPECT_GE(simple, 3U);
 }
 
 // The search updates a front's score after each candidate move by re-tracing only the loops
@@ -213,7 +216,9 @@ TEST(LoopMoves, ProgressIsReportedAndChangesNothing) {
 // Seed 120 of the generated catalogue (16 quads, two loops with one curl each): every
 // look-ahead of the search stalls with two self-crossing quads left, and the iterative
 // deepening over every move of the tiny front (`LoopMoveOptions::tiny_front`) finds a
-// sequence that leaves the loops simple. The moves keep the front and the hexes valid.
+// sequence that leaves the loops simple. The moves keep the front and the hexes valid. (The
+// search without `strict_contacts`, as when this surface was picked: with it, the look-aheads
+// alone untangle this front.)
 TEST(LoopMoves, TheDeepeningUntanglesATinyFrontTheLookAheadsLeave) {
   const auto mesh = test::random_quadrangulation(120, 8 + 120 % 14, 40);
   ASSERT_TRUE(mesh.has_value());
@@ -221,14 +226,16 @@ TEST(LoopMoves, TheDeepeningUntanglesATinyFrontTheLookAheadsLeave) {
   ASSERT_EQ(s.quads.size(), 16U);
   ASSERT_GT(find_loops(s, {.sides = false}).num_self_intersecting(), 0U);
 
-  LoopMoveOptions without;
+  LoopMoveOptions loose;
+  loose.strict_contacts = false;
+  LoopMoveOptions without = loose;
   without.tiny_depth = 0;
   const LoopMoveResult stalled = untangle_loops(s, without);
   EXPECT_FALSE(stalled.simple) << "the look-aheads alone untangle it now: pick another surface";
   EXPECT_EQ(stalled.deepenings, 0U);
   EXPECT_NE(stalled.stop_reason.find("no sequence"), std::string::npos) << stalled.stop_reason;
 
-  const LoopMoveResult r = untangle_loops(s);
+  const LoopMoveResult r = untangle_loops(s, loose);
   ASSERT_TRUE(r.simple) << r.stop_reason;
   EXPECT_GE(r.deepenings, 1U);
   EXPECT_EQ(r.self_crossing_quads_after, 0U);
@@ -244,10 +251,10 @@ TEST(LoopMoves, TheDeepeningUntanglesATinyFrontTheLookAheadsLeave) {
   }
 
   // Same answer twice (determinism), and a deepening bounded to no evaluation finds nothing.
-  const LoopMoveResult again = untangle_loops(s);
+  const LoopMoveResult again = untangle_loops(s, loose);
   EXPECT_EQ(again.hexes.hexes, r.hexes.hexes);
   EXPECT_EQ(again.front.quads, r.front.quads);
-  LoopMoveOptions starved;
+  LoopMoveOptions starved = loose;
   starved.tiny_evaluations = 0;
   EXPECT_FALSE(untangle_loops(s, starved).simple);
 }

@@ -413,8 +413,10 @@ TEST(ValidateIntersection, FaceAndOneMoreNodeIsRefused) {
   const ValidationReport report = validate_hex_complex(c, nullptr, false, true);
   EXPECT_FALSE(report.valid);
   EXPECT_EQ(report.find(Invariant::HexesShareTwoFaces), nullptr) << report.summary();
-  // the check is asked for: without it, this pair passes every other check
-  EXPECT_EQ(validate_hex_complex(c).find(Invariant::SharedNodesNotAFace), nullptr);
+  // the check is on by default; without it, this pair is not seen
+  EXPECT_NE(validate_hex_complex(c).find(Invariant::SharedNodesNotAFace), nullptr);
+  EXPECT_EQ(validate_hex_complex(c, nullptr, false, false).find(Invariant::SharedNodesNotAFace),
+            nullptr);
   const Violation* v = report.find(Invariant::SharedNodesNotAFace);
   ASSERT_NE(v, nullptr) << report.summary();
   EXPECT_EQ(v->count, 1U);
@@ -587,8 +589,9 @@ TEST(ValidateIntersection, ShearedTorusIsRefusedByThisCheckAlone) {
   EXPECT_EQ(v->count, expected.size());
   ASSERT_FALSE(expected.empty());
   EXPECT_EQ(v->examples.front(), expected.front());
-  EXPECT_EQ(v->examples.front(), "h0+h5:n0,n5,n8,n13");             // nodes (0 0 z) and (1 1 z)
-  EXPECT_TRUE(validate_hex_complex(sheared, nullptr, true).valid);  // without the check
+  EXPECT_EQ(v->examples.front(), "h0+h5:n0,n5,n8,n13");              // nodes (0 0 z) and (1 1 z)
+  EXPECT_FALSE(validate_hex_complex(sheared, nullptr, true).valid);  // by default
+  EXPECT_TRUE(validate_hex_complex(sheared, nullptr, true, false).valid);  // without the check
   // the check alone gives the same violation; none on the straight torus
   const Violation alone = shared_nodes_not_a_face(sheared);
   EXPECT_EQ(alone.count, v->count);

@@ -1,10 +1,9 @@
 #pragma once
 /// \file
-/// Loop-clean 20-quad sphere quadrangulations (22 nodes) of the closure of sphere_enum.hpp
-/// whose weave blocks under one rule set with the block recovery and the seam-undo retry: only
-/// the last ways of `weave::weave` complete them (docs/weave-recovery.md "The fill"). Written
-/// out because enumerating the 20-quad closure takes minutes; the numbers are the loop-clean
-/// order of `SphereClosureSlow.TwentyQuads`.
+/// Loop-clean sphere quadrangulations of the closure of sphere_enum.hpp whose weave blocks with
+/// the block recovery and the seam-undo retry: only the last ways of `weave::weave` complete
+/// them (docs/weave-recovery.md "The fill"). Written out because enumerating the closure takes
+/// time (minutes at 20 quads); the numbers are the loop-clean order of the closure.
 
 #include <array>
 #include <cstddef>
@@ -23,27 +22,67 @@ inline stc::QuadSurface surface_of_quads(std::size_t nodes,
   return s;
 }
 
-inline stc::QuadSurface blocked_sphere_170() {  // blocks under reliable
-  return surface_of_quads(
-      22, {{8, 0, 1, 2},    {12, 13, 14, 15}, {8, 2, 3, 4},     {9, 3, 2, 1},     {10, 4, 5, 6},
-           {9, 5, 4, 3},    {10, 6, 7, 11},   {9, 7, 6, 5},     {17, 18, 19, 20}, {11, 1, 0, 10},
-           {9, 1, 13, 12},  {1, 11, 14, 13},  {11, 16, 15, 14}, {16, 9, 12, 15},  {16, 11, 7, 9},
-           {10, 0, 18, 17}, {0, 21, 19, 18},  {21, 4, 20, 19},  {4, 10, 17, 20},  {21, 0, 8, 4}});
+/// Loop-clean shape 3 of the 12-quad closure (14 nodes): since the hex-making rules check
+/// their contacts (2026-12-07), its weave blocks under both rule sets with the block recovery
+/// and the seam-undo retry, and the fill of the input completes it (16 hexes).
+inline stc::QuadSurface blocked_sphere_12() {
+  return surface_of_quads(14, {{8, 9, 10, 11},
+                               {7, 1, 0, 5},
+                               {6, 2, 3, 4},
+                               {7, 3, 2, 1},
+                               {6, 4, 5, 0},
+                               {7, 5, 4, 3},
+                               {6, 12, 9, 8},
+                               {12, 1, 10, 9},
+                               {1, 13, 11, 10},
+                               {13, 6, 8, 11},
+                               {12, 6, 0, 1},
+                               {13, 1, 2, 6}});
 }
-inline stc::QuadSurface blocked_sphere_377() {  // blocks under extended
-  return surface_of_quads(
-      22, {{10, 0, 1, 2},   {11, 1, 0, 9},   {14, 2, 3, 4},    {11, 3, 2, 1},    {14, 4, 5, 6},
-           {11, 5, 4, 3},   {12, 6, 7, 8},   {11, 7, 6, 5},    {12, 8, 9, 13},   {11, 9, 8, 7},
-           {12, 20, 14, 6}, {13, 9, 0, 19},  {15, 16, 17, 18}, {14, 20, 16, 15}, {13, 19, 21, 16},
-           {10, 2, 18, 17}, {2, 14, 15, 18}, {19, 0, 10, 21},  {20, 12, 13, 16}, {21, 10, 17, 16}});
+
+/// Loop-clean shape 7 of the 16-quad closure (18 nodes): blocks like `blocked_sphere_12`; its
+/// fill completes it on top of one woven hex (17 hexes).
+inline stc::QuadSurface blocked_sphere_16() {
+  return surface_of_quads(18, {{8, 9, 10, 11},
+                               {7, 1, 0, 5},
+                               {6, 2, 3, 4},
+                               {7, 3, 2, 1},
+                               {6, 4, 5, 0},
+                               {7, 5, 4, 3},
+                               {6, 12, 9, 8},
+                               {12, 1, 10, 9},
+                               {1, 13, 11, 10},
+                               {13, 6, 8, 11},
+                               {14, 15, 16, 17},
+                               {13, 1, 2, 6},
+                               {12, 6, 15, 14},
+                               {6, 0, 16, 15},
+                               {0, 1, 17, 16},
+                               {1, 12, 14, 17}});
 }
-inline stc::QuadSurface
-blocked_sphere_158() {  // extended runs away (the rule budget), the fill stalls
-  return surface_of_quads(
-      22, {{12, 13, 14, 15}, {11, 1, 0, 9},   {10, 2, 3, 4},    {11, 3, 2, 1},    {10, 4, 5, 6},
-           {11, 5, 4, 3},    {10, 6, 7, 8},   {17, 18, 19, 20}, {10, 8, 9, 0},    {11, 9, 8, 7},
-           {10, 16, 13, 12}, {16, 1, 14, 13}, {1, 2, 15, 14},   {2, 10, 12, 15},  {16, 10, 0, 1},
-           {11, 7, 18, 17},  {7, 6, 19, 18},  {6, 21, 20, 19},  {21, 11, 17, 20}, {21, 6, 5, 11}});
+
+/// Loop-clean shape 17 of the 18-quad closure (20 nodes): under `extended` it blocks with the
+/// block recovery and the seam-undo retry, its fill stalls, and the reliable weave from the
+/// start completes it.
+inline stc::QuadSurface blocked_sphere_18() {
+  return surface_of_quads(20, {{12, 0, 1, 2},
+                               {13, 1, 0, 11},
+                               {12, 2, 3, 4},
+                               {13, 3, 2, 1},
+                               {12, 4, 5, 6},
+                               {13, 5, 4, 3},
+                               {12, 6, 7, 8},
+                               {13, 7, 6, 5},
+                               {14, 8, 9, 10},
+                               {13, 9, 8, 7},
+                               {14, 10, 11, 0},
+                               {15, 16, 17, 18},
+                               {14, 0, 12, 8},
+                               {19, 11, 16, 15},
+                               {11, 10, 17, 16},
+                               {10, 9, 18, 17},
+                               {9, 19, 15, 18},
+                               {19, 9, 13, 11}});
 }
 
 }  // namespace stcweave::test

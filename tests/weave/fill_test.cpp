@@ -41,42 +41,43 @@ WeaveResult woven_by_the_last_ways(const stc::QuadSurface& s, RuleSet rules) {
 }
 
 TEST(Fill, CompletesTheReliableWeaveOfAShapeTheRecoveryLeavesBlocked) {
-  const WeaveResult r = woven_by_the_last_ways(test::blocked_sphere_170(), RuleSet::Reliable);
-  EXPECT_EQ(r.stats.fill_hexes, 21U);
-  EXPECT_EQ(r.complex.hexes.size(), 21U) << "the input's front filled before any rule";
-  EXPECT_EQ(std::count(r.hex_rule.begin(), r.hex_rule.end(), "fill"), 21);
+  const WeaveResult r = woven_by_the_last_ways(test::blocked_sphere_12(), RuleSet::Reliable);
+  EXPECT_EQ(r.stats.fill_hexes, 16U);
+  EXPECT_EQ(r.complex.hexes.size(), 16U) << "the input's front filled before any rule";
+  EXPECT_EQ(std::count(r.hex_rule.begin(), r.hex_rule.end(), "fill"), 16);
   EXPECT_EQ(r.stats.reliable_from_start, 0U);
   EXPECT_EQ(r.stats.recoveries, 0U) << "the kept weave is the fill, not a recovered one";
 }
 
 TEST(Fill, CompletesAnExtendedWeaveWithHexesThatJoinTheWovenComplex) {
-  // Without `strict_contacts` the fill's fourth hex would share five nodes with its first one
-  // (the weave's check refuses it), and the reliable weave from the start makes 63 hexes.
-  const WeaveResult r = woven_by_the_last_ways(test::blocked_sphere_377(), RuleSet::Extended);
-  EXPECT_EQ(r.stats.fill_hexes, 13U);
-  EXPECT_EQ(r.complex.hexes.size(), 13U);
+  // The fill's 16 hexes join the one hex woven before the front blocked (the fill searches
+  // with `strict_contacts`, and the weave checks each of its hexes as it puts it on).
+  const WeaveResult r = woven_by_the_last_ways(test::blocked_sphere_16(), RuleSet::Extended);
+  EXPECT_EQ(r.stats.fill_hexes, 16U);
+  EXPECT_EQ(r.complex.hexes.size(), 17U);
+  EXPECT_EQ(std::count(r.hex_rule.begin(), r.hex_rule.end(), "fill"), 16);
   EXPECT_EQ(r.stats.reliable_from_start, 0U);
   EXPECT_EQ(r.stats.recoveries, 0U) << "the kept weave is the fill, not a recovered one";
 }
 
 TEST(Fill, ExtendedWeavesWithTheReliableRulesFromTheStartWhenTheFillStalls) {
-  const WeaveResult r = woven_by_the_last_ways(test::blocked_sphere_158(), RuleSet::Extended);
+  const WeaveResult r = woven_by_the_last_ways(test::blocked_sphere_18(), RuleSet::Extended);
   EXPECT_EQ(r.stats.fill_hexes, 0U);
   EXPECT_EQ(r.stats.reliable_from_start, 1U);
   // The same complex as the reliable weave of the shape.
   const WeaveResult reliable =
-      weave(test::blocked_sphere_158(), options_for(RuleSet::Reliable, false));
+      weave(test::blocked_sphere_18(), options_for(RuleSet::Reliable, false));
   EXPECT_EQ(r.complex.hexes, reliable.complex.hexes);
 }
 
 TEST(Fill, IsNotTriedUnderReliableFromStartOrWithTheRecoveryOff) {
   WeaveOptions o = options_for(RuleSet::Reliable, true);
   o.block_recovery = BlockRecovery::Off;
-  EXPECT_THROW((void)weave(test::blocked_sphere_170(), o), WeaveError);
+  EXPECT_THROW((void)weave(test::blocked_sphere_12(), o), WeaveError);
   WeaveOptions e = options_for(RuleSet::Extended, true);
   e.fill_up_to = 0;
   e.reliable_from_start = false;
-  EXPECT_THROW((void)weave(test::blocked_sphere_158(), e), WeaveError);
+  EXPECT_THROW((void)weave(test::blocked_sphere_18(), e), WeaveError);
 }
 
 TEST(Fill, ClosesACubeFrontWithOneHex) {

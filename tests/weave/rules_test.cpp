@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <set>
+#include <span>
 
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/weave/kernel.hpp"
@@ -118,6 +120,48 @@ TEST(Cross, RefusesThreeFacesOfOneHex) {
   EXPECT_FALSE(r.applied);
   EXPECT_TRUE(has(r.why, "belong to one hex")) << r.why;
   EXPECT_EQ(b.state.woven.hexes.size(), 1u);
+}
+
+TEST(Cross, RefusesAHexThatWouldShareMoreThanAFaceWithAWovenHex) {
+  // After the cross at node 0, the corner opposite it still has its three input faces, whose
+  // other six nodes are all nodes of h0: a second cross there would share six with it.
+  Bench b(cube());
+  ASSERT_TRUE(cross(b.state, b.ctx, NodeId(0)));
+  const stc::Hex& h0 = b.state.woven.hexes[0];
+  NodeId opposite = NodeId::invalid();
+  for (std::size_t n = 0; n < 8; ++n)
+    if (std::find(h0.begin(), h0.end(), NodeId(n)) == h0.end()) opposite = NodeId(n);
+  ASSERT_TRUE(opposite.is_valid());
+  ASSERT_EQ(b.state.front.valence(opposite), 3u);
+  const RuleResult r = cross(b.state, b.ctx, opposite);
+  EXPECT_FALSE(r.applied);
+  EXPECT_EQ(r.why, "the new hex would share 6 nodes with h0 (more than a face)");
+  EXPECT_EQ(b.state.woven.hexes.size(), 1u);
+  EXPECT_EQ(b.state.front.num_nodes(), 9u) << "no node made for a refused hex";
+}
+
+TEST(ContactConflict, AcceptsTheFaceItIsGluedToAndRefusesFourOtherNodes) {
+  Bench b(cube());
+  ASSERT_TRUE(cross(b.state, b.ctx, NodeId(0)));
+  const stc::Hex h0 = b.state.woven.hexes[0];
+  // A face of h0 that is on the front (the three that hold its new node w = n8).
+  FaceIndex glued = kNoFace;
+  for (std::size_t f = 0; f < b.state.front.face_capacity(); ++f) {
+    const auto fi = static_cast<FaceIndex>(f);
+    if (b.state.front.is_alive(fi) && b.state.front.face(fi).owner.is_hex()) glued = fi;
+  }
+  ASSERT_NE(glued, kNoFace);
+  const stc::Quad q = b.state.front.face(glued).nodes;
+  const std::array<FaceIndex, 1> used{glued};
+  EXPECT_FALSE(b.state.contact_conflict(q, used).has_value()) << "the face it is glued to";
+  const std::array<FaceIndex, 0> none{};
+  const auto off = b.state.contact_conflict(q, none);
+  ASSERT_TRUE(off.has_value()) << "the same four nodes, not glued";
+  EXPECT_EQ(*off,
+            "the new hex would share four nodes with h0 that are not the face it is "
+            "glued to");
+  // Three nodes of h0 are accepted.
+  EXPECT_FALSE(b.state.contact_conflict(std::span(h0).first(3), none).has_value());
 }
 
 TEST(Cross, FlatCornerIsRefusedUnlessThePreconditionIsLifted) {

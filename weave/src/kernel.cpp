@@ -178,6 +178,44 @@ std::optional<std::string> WeaveState::merge_conflict(NodeId x, NodeId y, NodeId
   return std::nullopt;
 }
 
+std::optional<std::string> WeaveState::contact_conflict(std::span<const NodeId> nodes,
+                                                        std::span<const FaceIndex> used) const {
+  // Each woven hex appears once in the list of each of its nodes, so after sorting, the
+  // length of a hex's run is the number of nodes it shares with the new hex.
+  std::vector<HexId>& near = contact_hexes_;
+  near.clear();
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (std::find(nodes.begin(), nodes.begin() + static_cast<std::ptrdiff_t>(i), nodes[i]) !=
+        nodes.begin() + static_cast<std::ptrdiff_t>(i))
+      continue;  // a node given twice counts once
+    const auto& at = woven.hexes_at[nodes[i].index()];
+    near.insert(near.end(), at.begin(), at.end());
+  }
+  if (near.size() < 4) return std::nullopt;
+  std::sort(near.begin(), near.end());
+  for (std::size_t i = 0; i < near.size();) {
+    std::size_t j = i + 1;
+    while (j < near.size() && near[j] == near[i]) ++j;
+    const std::size_t shared = j - i;
+    const HexId g = near[i];
+    i = j;
+    if (shared < 4) continue;
+    if (shared > 4) {
+      return "the new hex would share " + std::to_string(shared) + " nodes with " + g.str() +
+             " (more than a face)";
+    }
+    const bool glued = std::any_of(used.begin(), used.end(), [&](FaceIndex f) {
+      const FaceOwner& o = front.face(f).owner;
+      return o.is_hex() && o.id == g.value();
+    });
+    if (!glued) {
+      return "the new hex would share four nodes with " + g.str() +
+             " that are not the face it is glued to";
+    }
+  }
+  return std::nullopt;
+}
+
 void WeaveState::roll_back_to(WeaveState&& saved) {
   const WeaveStats now = stats;
   *this = std::move(saved);

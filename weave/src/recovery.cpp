@@ -144,7 +144,8 @@ std::vector<RecoveryMove> recovery_moves(const WeaveState& state, const Recovery
   for (std::size_t i = 0; i < std::min(nodes.size(), limits.nodes_per_block); ++i) {
     std::vector<FaceIndex> at = front.faces_at(nodes[i].second);
     std::sort(at.begin(), at.end());
-    for (FaceIndex f : at) moves.push_back({nodes[i].second, {f}});
+    for (FaceIndex f : at)
+      if (!pillow_conflict(state, {f})) moves.push_back({nodes[i].second, {f}});
   }
   // The whole front, unless two of its faces share two edges (a valence-2 node): their two
   // pillow hexes would then share two faces.
@@ -152,7 +153,7 @@ std::vector<RecoveryMove> recovery_moves(const WeaveState& state, const Recovery
     RecoveryMove all{NodeId::invalid(), {}};
     for (std::size_t f = 0; f < front.face_capacity(); ++f)
       if (front.is_alive(static_cast<FaceIndex>(f))) all.faces.push_back(static_cast<FaceIndex>(f));
-    moves.push_back(std::move(all));
+    if (!pillow_conflict(state, all.faces)) moves.push_back(std::move(all));
   }
   return moves;
 }
@@ -172,9 +173,14 @@ std::vector<Recovery> recover_blocked(WeaveState& state, WeaveContext& ctx, cons
   RecoveryLimits wider = limits;
   // A second, wider search when the first finds nothing (a weave it completes is unchanged):
   // ten times the trials and 2.5 times the depth. Not under `extended` with its reliable
-  // fallback (weave.cpp), which is searched the same way.
+  // fallback (weave.cpp), which is searched the same way, nor on a front small enough for the
+  // fill of a blocked front that `weave` tries next (`WeaveOptions::fill_up_to`): measured on
+  // the 16-quad spheres of tests/weave/complete_test.cpp, once the rules check their contacts
+  // the wider search on a blocked 4-face front took 16 s and completed nothing.
   const bool has_fallback = ctx.options.rules == RuleSet::Extended && !ctx.options.selection;
-  if (!done && !has_fallback && limits.max_trials > 0) {
+  const bool fill_next = ctx.options.block_recovery == BlockRecovery::Auto &&
+                         state.front.num_faces() <= ctx.options.fill_up_to;
+  if (!done && !has_fallback && !fill_next && limits.max_trials > 0) {
     wider.max_trials = 10 * limits.max_trials;
     wider.max_depth = limits.max_depth * 5 / 2;
     Search second{ctx, run, wider};

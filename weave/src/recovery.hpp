@@ -18,7 +18,8 @@ using WeaveRun = std::function<std::optional<std::string>(WeaveState&, WeaveCont
 /// The pillows tried at a blocked front, in the order tried: one face at a time at the first
 /// `limits.nodes_per_block` valence-2 nodes (lowest id first; each of their faces, lowest slot
 /// first), then at the lowest-valence nodes when there are fewer valence-2 ones, then the whole
-/// front. Each entry: the blocked node (invalid for the whole front) and the faces.
+/// front; a pillow with a `pillow_conflict` is left out. Each entry: the blocked node
+/// (invalid for the whole front) and the faces.
 struct RecoveryMove {
   NodeId node;
   std::vector<FaceIndex> faces;

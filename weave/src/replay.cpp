@@ -19,9 +19,9 @@ bool same_cycle(const stc::Quad& a, const stc::Quad& b) {
 }
 
 /// Why `hex` (canonical nodes, built on the front faces `used`) cannot join the woven complex,
-/// if it cannot: two of its front faces belong to one hex, it would share more than one face
-/// (or four nodes that are not a face being glued now) with a woven hex, or one of its edges
-/// between existing nodes is an edge of a woven hex off the front.
+/// if it cannot: two of its front faces belong to one hex, its contacts with a woven hex
+/// (`WeaveState::contact_conflict`), or one of its edges between existing nodes is an edge of
+/// a woven hex off the front.
 std::optional<std::string> conflict(const WeaveState& state, const stc::Hex& hex,
                                     const std::vector<FaceIndex>& used, std::size_t old_nodes) {
   const Front& front = state.front;
@@ -33,6 +33,7 @@ std::optional<std::string> conflict(const WeaveState& state, const stc::Hex& hex
         return "two of its front faces belong to hex " + std::to_string(a.id);
     }
   }
+  if (auto why = state.contact_conflict(hex, used)) return why;
   std::vector<HexId> near;
   for (const NodeId n : hex) {
     if (n.index() < old_nodes) {
@@ -45,18 +46,6 @@ std::optional<std::string> conflict(const WeaveState& state, const stc::Hex& hex
   for (const HexId g : near) {
     std::array<NodeId, 8> gn{};
     for (std::size_t i = 0; i < 8; ++i) gn[i] = front.find(state.woven.hexes[g.index()][i]);
-    std::vector<NodeId> common;
-    for (const NodeId n : hex)
-      if (std::find(gn.begin(), gn.end(), n) != gn.end()) common.push_back(n);
-    if (common.size() > 4) return "it would share more than one face with " + g.str();
-    if (common.size() == 4) {
-      bool glued = false;
-      for (const FaceIndex f : used) {
-        const FaceOwner& o = front.face(f).owner;
-        glued = glued || (o.is_hex() && o.id == g.value());
-      }
-      if (!glued) return "it would share four nodes with " + g.str() + " off the front";
-    }
     for (const auto& e : stc::kHexEdges) {
       const NodeId a = hex[static_cast<std::size_t>(e[0])];
       const NodeId b = hex[static_cast<std::size_t>(e[1])];

@@ -264,9 +264,9 @@ std::optional<std::string> weave_front(WeaveState& state, WeaveContext& ctx,
         seam_fixpoint(state, ctx);
         continue;
       }
-      if (state.stats.front_pillows < options.recovery_pillows) {
+      if (state.stats.front_pillows < options.recovery_pillows &&
+          pillow_blocked_node(state, ctx) > 0) {
         ++state.stats.front_pillows;
-        pillow_blocked_node(state, ctx);
         seam_fixpoint(state, ctx);
         continue;
       }

@@ -5,7 +5,9 @@
 ///
 /// Which two faces: one strip face f holding v on the shrinking side, and the non-strip face
 /// g across f's shrinking-side edge at v. (Using the two strip faces at v instead is wrong:
-/// the loop then never shrinks, or a later cross rebuilds the same hex; DESIGN.md.)
+/// the loop then never shrinks, or a later cross rebuilds the same hex; DESIGN.md.) The new
+/// hex may share at most one of the two faces with a woven hex, and four nodes only as that
+/// face (`WeaveState::contact_conflict`).
 
 #include <algorithm>
 #include <cstdint>
@@ -34,8 +36,9 @@ RuleResult blind_chord(WeaveState& state, WeaveContext& ctx, NodeId v, const Str
                        const FaceSet& strip_faces, std::span<const std::uint32_t> steps) {
   const Front& front = state.front;
   // The refusal of the last pair tried (its message is built once, at the end).
-  enum class Refusal { NoPair, SharedEdges, SameHex } last = Refusal::NoPair;
+  enum class Refusal { NoPair, SharedEdges, SameHex, Contact } last = Refusal::NoPair;
   HexId same_hex;
+  std::string contact;
   for (const std::uint32_t step : steps) {
     const stc::StripStep& p = strip[step];
     const FaceIndex f = face_of(p);
@@ -64,10 +67,15 @@ RuleResult blind_chord(WeaveState& state, WeaveContext& ctx, NodeId v, const Str
       same_hex = HexId(of.id);
       continue;
     }
+    const std::array<FaceIndex, 2> used{f, g.face};
+    if (auto conflict = state.contact_conflict(six, used)) {
+      last = Refusal::Contact;
+      contact = std::move(*conflict);
+      continue;
+    }
     // ---- move (make_hex propagates depth and angles) ----
     const NodeId n5 = state.new_node();
     const NodeId n6 = state.new_node();
-    const std::array<FaceIndex, 2> used{f, g.face};
     const HexId hex = make_hex(state, ctx, {s, p3, p2, t, q2, n5, n6, q3}, used, "blind-chord", v);
     ++state.stats.blind_chords;
     return RuleResult::done(hex);
@@ -77,6 +85,8 @@ RuleResult blind_chord(WeaveState& state, WeaveContext& ctx, NodeId v, const Str
       return RuleResult::refused("faces share more than one edge's nodes");
     case Refusal::SameHex:
       return RuleResult::refused("both faces belong to " + same_hex.str());
+    case Refusal::Contact:
+      return RuleResult::refused(contact);
     case Refusal::NoPair:
       break;
   }

@@ -2,7 +2,9 @@
 /// node become three faces of one new hex. Its geometric precondition (RWW, sect. 2.2: "the
 /// angles between the faces are not too flat") is ours to set: with `extended`, a corner
 /// where more than one of its three edges is flatter than `little_sharp` is refused, unless
-/// the shrink lifted the preconditions for this step (`WeaveContext::relax_geometry`).
+/// the shrink lifted the preconditions for this step (`WeaveContext::relax_geometry`). Its
+/// topological precondition: the new hex shares at most a face (one of the three) with any
+/// woven hex, and four nodes only as that face (`WeaveState::contact_conflict`).
 
 #include <algorithm>
 
@@ -62,9 +64,10 @@ RuleResult cross(WeaveState& state, WeaveContext& ctx, NodeId v) {
     return RuleResult::refused(
         "two of its faces belong to one hex (the new hex would share two faces with it)");
   }
+  const std::array<FaceIndex, 3> used{f1, f2, f3};
+  if (auto conflict = state.contact_conflict(nodes, used)) return RuleResult::refused(*conflict);
   // ---- move (make_hex propagates depth and angles) ----
   const NodeId w = state.new_node();
-  const std::array<FaceIndex, 3> used{f1, f2, f3};
   const HexId hex = make_hex(state, ctx, {v, b, xab, a, c, xbc, w, xca}, used,
                              ctx.relax_geometry ? "cross-relaxed" : "cross", v);
   ++state.stats.crosses;

@@ -131,15 +131,71 @@ std::size_t pillow_front(WeaveState& state, WeaveContext& ctx) {
   return pillow_faces(state, ctx, faces);
 }
 
+std::optional<std::string> pillow_conflict(const WeaveState& state,
+                                           const std::vector<FaceIndex>& faces) {
+  const Front& front = state.front;
+  std::vector<std::pair<NodeId, FaceIndex>> at;  // (node, face), sorted by node
+  at.reserve(4 * faces.size());
+  for (FaceIndex f : faces) {
+    const stc::Quad& q = front.face(f).nodes;
+    const std::array<FaceIndex, 1> glued{f};
+    if (auto conflict = state.contact_conflict(q, glued))
+      return "pillow of " + front.face(f).owner.str() + ": " + *conflict;
+    for (NodeId n : q) at.emplace_back(n, f);
+  }
+  std::sort(at.begin(), at.end());
+  std::vector<std::pair<FaceIndex, FaceIndex>> pairs;  // one per node two faces share
+  for (std::size_t i = 0; i < at.size();) {
+    std::size_t j = i + 1;
+    while (j < at.size() && at[j].first == at[i].first) ++j;
+    for (std::size_t a = i; a < j; ++a)
+      for (std::size_t b = a + 1; b < j; ++b)
+        pairs.emplace_back(std::minmax(at[a].second, at[b].second));
+    i = j;
+  }
+  std::sort(pairs.begin(), pairs.end());
+  for (std::size_t i = 0; i < pairs.size();) {
+    std::size_t j = i + 1;
+    while (j < pairs.size() && pairs[j] == pairs[i]) ++j;
+    const auto [f, g] = pairs[i];
+    const std::size_t shared = j - i;
+    i = j;
+    if (shared == 1) continue;  // the two hexes share the node and its copy
+    if (shared > 2) {
+      return "pillow of " + front.face(f).owner.str() + " and " + front.face(g).owner.str() +
+             ": the two faces share " + std::to_string(shared) + " nodes (two edges)";
+    }
+    // Two shared nodes: fine when they are an edge of f (then of g too, on a manifold front).
+    const stc::Quad& qf = front.face(f).nodes;
+    const stc::Quad& qg = front.face(g).nodes;
+    const auto in_g = [&qg](NodeId n) { return std::find(qg.begin(), qg.end(), n) != qg.end(); };
+    bool edge = false;
+    for (int k = 0; k < 4 && !edge; ++k) edge = in_g(quad_at(qf, k)) && in_g(quad_at(qf, k + 1));
+    if (!edge) {
+      return "pillow of " + front.face(f).owner.str() + " and " + front.face(g).owner.str() +
+             ": the two faces share two nodes that are not an edge";
+    }
+  }
+  return std::nullopt;
+}
+
 std::size_t pillow_blocked_node(WeaveState& state, WeaveContext& ctx) {
+  bool valence_two = false;
   for (std::size_t n = 0; n < state.front.num_nodes(); ++n) {
     const NodeId v(n);
     if (state.front.find(v) != v || state.front.valence(v) != 2) continue;
+    valence_two = true;
     std::vector<FaceIndex> at = state.front.faces_at(v);
     std::sort(at.begin(), at.end());
-    return pillow_faces(state, ctx, {at.front()});
+    for (FaceIndex f : at)
+      if (!pillow_conflict(state, {f})) return pillow_faces(state, ctx, {f});
   }
-  return pillow_front(state, ctx);
+  if (valence_two) return 0;
+  std::vector<FaceIndex> faces;
+  for (std::size_t f = 0; f < state.front.face_capacity(); ++f)
+    if (state.front.is_alive(static_cast<FaceIndex>(f))) faces.push_back(static_cast<FaceIndex>(f));
+  if (pillow_conflict(state, faces)) return 0;
+  return pillow_faces(state, ctx, faces);
 }
 
 }  // namespace stcweave::weave

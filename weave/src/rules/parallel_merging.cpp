@@ -10,12 +10,68 @@
 /// strip, is the seed's torus of hexes). No node is created or merged.
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
 #include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/weave/rules.hpp"
 
 namespace stcweave::weave {
+namespace {
+
+/// Why two of the new hexes `hexes` would share more than a face, or four nodes that are not
+/// a face of both, if two would (the batch's own `WeaveState::contact_conflict`).
+std::optional<std::string> batch_contact_conflict(const std::vector<stc::Hex>& hexes) {
+  std::vector<std::pair<NodeId, std::uint32_t>> at;  // (node, new hex), sorted by node
+  at.reserve(8 * hexes.size());
+  for (std::size_t i = 0; i < hexes.size(); ++i)
+    for (NodeId n : hexes[i]) at.emplace_back(n, static_cast<std::uint32_t>(i));
+  std::sort(at.begin(), at.end());
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;  // one per shared node
+  for (std::size_t i = 0; i < at.size();) {
+    std::size_t j = i + 1;
+    while (j < at.size() && at[j].first == at[i].first) ++j;
+    for (std::size_t a = i; a < j; ++a)
+      for (std::size_t b = a + 1; b < j; ++b) pairs.emplace_back(at[a].second, at[b].second);
+    i = j;
+  }
+  std::sort(pairs.begin(), pairs.end());
+  const auto has_face = [](const stc::Hex& h, const std::array<NodeId, 4>& key) {
+    for (int lf = 0; lf < 6; ++lf)
+      if (quad_sorted(stc::hex_face(h, lf)) == key) return true;
+    return false;
+  };
+  for (std::size_t i = 0; i < pairs.size();) {
+    std::size_t j = i + 1;
+    while (j < pairs.size() && pairs[j] == pairs[i]) ++j;
+    const std::size_t shared = j - i;
+    const auto [a, b] = pairs[i];
+    i = j;
+    if (shared < 4) continue;
+    bool face = false;
+    if (shared == 4) {
+      std::array<NodeId, 4> key{};
+      std::size_t k = 0;
+      for (NodeId n : hexes[a])
+        if (std::find(hexes[b].begin(), hexes[b].end(), n) != hexes[b].end()) key[k++] = n;
+      std::sort(key.begin(), key.end());
+      face = has_face(hexes[a], key) && has_face(hexes[b], key);
+    }
+    if (!face) {
+      return "two new hexes would share " + std::to_string(shared) +
+             " nodes other than a face (at " + hexes[a][0].str() + " and " + hexes[b][0].str() +
+             ")";
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
 
 RuleResult parallel_merging(WeaveState& state, WeaveContext& ctx, const Strip& strip,
                             const FrontComponents& components) {
@@ -114,7 +170,8 @@ RuleResult parallel_merging(WeaveState& state, WeaveContext& ctx, const Strip& s
   }
   if (faces_in_component != strip.size() + 2 * pairs.size())
     return RuleResult::refused("the strip and the two regions are not the whole front component");
-  // No new hex may share two faces with one hex.
+  // No new hex may share more than a face with a woven hex (two faces with one hex included)
+  // or with another new hex, nor four nodes other than the face between them.
   const auto front_face_of = [&front](const stc::Hex& hex, int lf) -> FaceIndex {
     const auto key = quad_sorted(stc::hex_face(hex, lf));
     for (FaceIndex g : front.faces_at(
@@ -128,15 +185,15 @@ RuleResult parallel_merging(WeaveState& state, WeaveContext& ctx, const Strip& s
     const stc::Quad fq = front.face(f).nodes;
     const auto img = [&](NodeId n) { return image.at(n.index()); };
     hexes.push_back({fq[0], fq[3], fq[2], fq[1], img(fq[0]), img(fq[3]), img(fq[2]), img(fq[1])});
-    std::vector<std::int32_t> owners;
+    std::vector<FaceIndex> glued;
     for (int lf = 0; lf < 6; ++lf) {
       const FaceIndex h = front_face_of(hexes.back(), lf);
-      if (h != kNoFace && front.face(h).owner.is_hex()) owners.push_back(front.face(h).owner.id);
+      if (h != kNoFace) glued.push_back(h);
     }
-    std::sort(owners.begin(), owners.end());
-    if (std::adjacent_find(owners.begin(), owners.end()) != owners.end())
-      return RuleResult::refused("a new hex would share two faces with one hex");
+    if (auto conflict = state.contact_conflict(hexes.back(), glued))
+      return RuleResult::refused(*conflict);
   }
+  if (auto conflict = batch_contact_conflict(hexes)) return RuleResult::refused(*conflict);
   // ---- move: each hex uses its two disc faces and whatever of its side faces is on the
   // front (strip faces on the rim, faces of the hexes just made inside); make_hex propagates.
   for (const stc::Hex& hex : hexes) {

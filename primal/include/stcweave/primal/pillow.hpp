@@ -96,7 +96,9 @@ struct PillowReport {
 [[nodiscard]] PillowReport assess_pillow(const HexMesh& mesh, std::size_t num_boundary_nodes,
                                          const PillowOptions& options = {});
 
-/// Pillows the shells of `boundary` that `options.mode` selects (see the file comment).
+/// Pillows the shells of `boundary` that `options.mode` selects (see the file comment), except
+/// a shell two of whose quads share two nodes that are not an edge (their pillow hexes would
+/// share four nodes off a face: `stc::Invariant::SharedNodesNotAFace`); `reason` names them.
 /// New nodes are appended after the existing ones, new hexes after the existing hexes.
 /// \pre `boundary` is the complex's boundary: its quads are the faces used once, oriented
 ///      outward, over the nodes `0 .. boundary.num_nodes-1` of `mesh`.

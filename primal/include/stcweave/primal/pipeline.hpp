@@ -116,9 +116,9 @@ struct MeshResult {
   /// Validation of the final complex (`mesh.complex`, after pillowing) against the input.
   stc::ValidationReport validation;
   /// The output's hex pairs sharing four or more nodes that are not a face of both
-  /// (`stc::shared_nodes_not_a_face`): not refused yet (docs/self-intersecting-loops.md
-  /// "Hexes sharing four nodes off a face"); a mesh with such a pair has a negative Jacobian
-  /// inside some hex, whatever the corners say.
+  /// (`stc::shared_nodes_not_a_face`, part of `validation`): such a mesh has a negative
+  /// Jacobian inside some hex whatever the corners say, so it is refused like any invalid
+  /// complex; a count above 0 is seen only with `keep_invalid`.
   stc::Violation shared_nodes{stc::Invariant::SharedNodesNotAFace, 0, {}};
   HarmonicReport harmonic;
   /// What the pillow stage decided and did. When it pillowed, `mesh` has the pillow's nodes

@@ -126,13 +126,13 @@ struct LoopMoveOptions {
   /// updates the score by re-tracing only those); a difference throws `InternalError`. Slow:
   /// a full trace per evaluation, as the search did before it updated scores.
   bool check_scores = false;
-  /// Also refuse a hex that would share more than four nodes with an attached hex, or four
-  /// nodes with one whose face it is not built on (the weave's own check of a hex put on its
-  /// front; `stc::validate_hex_complex` refuses these too when asked, as
-  /// `SharedNodesNotAFace`, and the pipeline asks it of every complex it outputs). Off by
-  /// default; the weave's fill of a blocked front (`weave::WeaveOptions::fill_up_to`) sets it,
-  /// so that every hex of a fill can join the woven complex.
-  bool strict_contacts = false;
+  /// Refuse a hex that would share more than four nodes with an attached hex, or four nodes
+  /// with one whose face it is not built on (the weave's own check of a hex put on its front,
+  /// `weave::WeaveState::contact_conflict`; `stc::validate_hex_complex` refuses such pairs as
+  /// `SharedNodesNotAFace`, and the pipeline asks it of every complex it outputs). On by
+  /// default: without it the attached hexes can hold such a pair, and then no complex that
+  /// contains them is valid (off only to compare with the searches before 2026-12-07).
+  bool strict_contacts = true;
   /// Called when set: every 10th hex attached, and every `progress_every` evaluations (a
   /// look-ahead can evaluate for seconds without attaching a hex). Reports only; the search
   /// is the same with or without it.

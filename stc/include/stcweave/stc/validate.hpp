@@ -104,16 +104,14 @@ struct ValidationReport {
 /// \param check_pinched_faces also require no pinched face pair (`PinchedFacePair`): what
 /// a mesh handed to a solver needs; off for the weave's own complex, which may hold pairs
 /// at boundary nodes that the pipeline's pillow and unpinch stages remove.
-/// \param check_shared_nodes also require `SharedNodesNotAFace` (`stcweave check` does).
-/// Off by default: the front moves' attached hexes (without
-/// `LoopMoveOptions::strict_contacts`) and the weave on small irregular fronts make such
-/// pairs, and the pipeline does not refuse them yet; it reports them
-/// (`shared_nodes_not_a_face` below; docs/self-intersecting-loops.md "Hexes sharing four
-/// nodes off a face").
+/// \param check_shared_nodes also require `SharedNodesNotAFace`. On by default (the pipeline
+/// and `stcweave check` ask it of everything they output or certify); off only to look at a
+/// complex made before the weave's rules and the front moves' search checked their contacts
+/// (docs/self-intersecting-loops.md "Hexes sharing four nodes off a face").
 [[nodiscard]] ValidationReport validate_hex_complex(const HexComplex& complex,
                                                     const QuadSurface* expected_boundary = nullptr,
                                                     bool check_pinched_faces = false,
-                                                    bool check_shared_nodes = false);
+                                                    bool check_shared_nodes = true);
 
 /// The `SharedNodesNotAFace` check alone (hexes with an invalid or repeated node left out):
 /// the pairs of hexes sharing four or more nodes that are not exactly a face of both, counted,

@@ -13,6 +13,8 @@
 /// complete all of them and `extended` 9 of 16 (docs/weave-recovery.md).
 
 #include <cstddef>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "stcweave/weave/kernel.hpp"
@@ -28,8 +30,18 @@ std::size_t pillow_front(WeaveState& state, WeaveContext& ctx);
 /// copied, and the side faces along the region's rim join the front.
 std::size_t pillow_faces(WeaveState& state, WeaveContext& ctx, const std::vector<FaceIndex>& faces);
 
-/// A pillow of one face at the lowest valence-2 node of the front (its lowest face slot),
-/// which raises that node's valence to 3; the whole front when there is no such node.
+/// Why a pillow of `faces` would break the complex, if it would: a woven hex other than its
+/// owner holds the four nodes of one of them (`WeaveState::contact_conflict`), two of them
+/// share two nodes that are not an edge of both (their pillow hexes would share those nodes
+/// and their copies: four nodes that are not a face), or three or more nodes (two edges: the
+/// hexes would share two faces). `pillow_faces` does not check it.
+[[nodiscard]] std::optional<std::string> pillow_conflict(const WeaveState& state,
+                                                         const std::vector<FaceIndex>& faces);
+
+/// A pillow of one face at the lowest valence-2 node of the front (its lowest face slot
+/// whose pillow has no `pillow_conflict`), which raises that node's valence to 3; the whole
+/// front when there is no such node. Returns 0 (and changes nothing) when every such pillow
+/// has a conflict.
 std::size_t pillow_blocked_node(WeaveState& state, WeaveContext& ctx);
 
 }  // namespace stcweave::weave

@@ -100,6 +100,14 @@ struct WeaveState {
   /// face of both, or a face one of whose copies is already glued.
   [[nodiscard]] std::optional<std::string> merge_conflict(NodeId x, NodeId y, NodeId keep,
                                                           NodeId gone) const;
+  /// Why a new hex would break the complex through its contacts with the woven hexes, if it
+  /// would: it would share more than four nodes with a woven hex, or four that are not the
+  /// face it is glued to (two such hexes cannot both have a positive Jacobian everywhere:
+  /// `stc::shared_nodes_not_a_face`). `nodes` are the new hex's nodes already on the front
+  /// (canonical; its fresh nodes left out), `used` the front faces it is glued through. Two
+  /// or three shared nodes are accepted.
+  [[nodiscard]] std::optional<std::string> contact_conflict(std::span<const NodeId> nodes,
+                                                            std::span<const FaceIndex> used) const;
   /// Goes back to `saved` (an earlier copy of this state), keeping the counters of the
   /// selection process (selections, failed and rolled-back shrinks) as they are now.
   void roll_back_to(WeaveState&& saved);
@@ -140,6 +148,9 @@ struct WeaveState {
   /// `merge_conflict`'s scratch: the sorted node images of the hexes at one node, kept
   /// between calls so that the check before every seam allocates nothing.
   mutable std::vector<std::array<NodeId, 8>> merge_images_;
+  /// `contact_conflict`'s scratch: the woven hexes at the new hex's nodes, one entry per
+  /// shared node.
+  mutable std::vector<HexId> contact_hexes_;
 };
 
 /// Scratch marks over nodes or faces: a fresh stamp unmarks every entry in O(1).
