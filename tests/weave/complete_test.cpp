@@ -220,6 +220,9 @@ TEST(SphereClosureSlow, TwentyQuads) {
   EXPECT_EQ(reliable.still, 49U) << "reliable, still blocked";
   EXPECT_EQ(reliable.retried, 25U) << "reliable, completed by the retry";
   EXPECT_EQ(reliable.filled, 18U) << "reliable, completed by the fill";
+  // The extended pins below are those of before 2026-12-07, not measured again: the run of
+  // this test that day was stopped after 255 of the 420 shapes under extended, 16 of them
+  // still blocked, so this part fails until it is re-pinned.
   const Tally extended = weave_loop_clean(c.at(20), RuleSet::Extended, 1);
   EXPECT_EQ(extended.still, 0U) << "extended, still blocked";
   EXPECT_EQ(extended.retried, 3U) << "extended, completed by the retry";
