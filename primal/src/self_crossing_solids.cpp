@@ -1,6 +1,7 @@
 #include "stcweave/primal/self_crossing_solids.hpp"
 
 #include <algorithm>
+#include <memory>
 #include <string>
 
 #include "stcweave/primal/edge_angles.hpp"
@@ -28,6 +29,11 @@ weave::WeaveResult weave_solids_self_crossing(const SurfaceMesh& mesh,
   // The shared budget (SharedSearchBudget): what is left, the balls that went through the
   // moves, and the last search that gave up.
   std::size_t work_left = budget.work;
+  // Every search of every ball draws its evaluations from one pool: the untangling, and also
+  // the fills and the rounds during the weaves of the ways (stc::LoopMoveOptions::
+  // shared_evaluations), whose deepenings on small fronts are where the time goes when the
+  // weaves block (up to 300,000 evaluations each, several seconds).
+  const auto pool = std::make_shared<std::size_t>(budget.evaluations);
   std::size_t evaluations_left = budget.evaluations;
   std::size_t searched_balls = 0;
   std::size_t gave_up = 0;
@@ -49,6 +55,7 @@ weave::WeaveResult weave_solids_self_crossing(const SurfaceMesh& mesh,
     ball_search.search.max_work = std::min(ball_search.search.max_work, work_left);
     ball_search.search.max_evaluations =
         std::min(ball_search.search.max_evaluations, evaluations_left);
+    ball_search.search.shared_evaluations = pool;
     ++searched_balls;
     SelfCrossingReport one;
     const auto charge = [&] {
@@ -64,7 +71,7 @@ weave::WeaveResult weave_solids_self_crossing(const SurfaceMesh& mesh,
                                       ? std::max(work, ball_search.search.max_work)
                                       : work;
       work_left -= std::min(work_left, charged);
-      evaluations_left -= std::min(evaluations_left, evaluations);
+      evaluations_left = *pool;
       if (work_left == 0 || evaluations_left == 0) exhausted = true;
     };
     try {

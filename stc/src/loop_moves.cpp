@@ -54,6 +54,15 @@ struct Pattern {
   std::vector<int> chosen;
 };
 
+/// Why a search stopped at its evaluation bound.
+std::string evaluation_bound_words(const LoopMoveOptions& options) {
+  std::string words = "evaluation bound (" + std::to_string(options.max_evaluations) +
+                      " moves or " + std::to_string(options.max_work) + " face evaluations";
+  if (options.shared_evaluations && *options.shared_evaluations == 0)
+    words += ", or the shared pool of evaluations, now empty";
+  return words + ") reached";
+}
+
 const std::vector<Pattern>& patterns() {
   static const std::vector<Pattern> p = {
       {FrontMove::Bump, {0}},
@@ -1118,7 +1127,8 @@ class Search {
   void on_tick(std::function<void()> tick) { tick_ = std::move(tick); }
 
   [[nodiscard]] bool exhausted() const {
-    return evaluations_ >= options_.max_evaluations || work_ >= options_.max_work;
+    return evaluations_ >= options_.max_evaluations || work_ >= options_.max_work ||
+           (options_.shared_evaluations && *options_.shared_evaluations == 0);
   }
 
  private:
@@ -1145,6 +1155,8 @@ class Search {
 
   void count_evaluation() {
     ++evaluations_;
+    if (options_.shared_evaluations && *options_.shared_evaluations > 0)
+      --*options_.shared_evaluations;
     if (tick_ && options_.progress_every > 0 && evaluations_ % options_.progress_every == 0)
       tick_();
   }
@@ -1267,8 +1279,7 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
       break;
     }
     if (search.exhausted()) {
-      stop = "evaluation bound (" + std::to_string(options.max_evaluations) + " moves or " +
-             std::to_string(options.max_work) + " face evaluations) reached";
+      stop = evaluation_bound_words(options);
       break;
     }
     const bool small = current.live <= options.small_front;
@@ -1365,8 +1376,7 @@ void run(State& current, const LoopMoveOptions& options, Goal goal, std::size_t 
       }
     }
     if (!improved && search.exhausted()) {
-      stop = "evaluation bound (" + std::to_string(options.max_evaluations) + " moves or " +
-             std::to_string(options.max_work) + " face evaluations) reached";
+      stop = evaluation_bound_words(options);
       break;
     }
     if (!improved) {

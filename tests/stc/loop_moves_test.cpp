@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <memory>
 #include <optional>
 
 #include "stcweave/stc/errors.hpp"
@@ -257,6 +258,47 @@ TEST(LoopMoves, TheDeepeningUntanglesATinyFrontTheLookAheadsLeave) {
   LoopMoveOptions starved = loose;
   starved.tiny_evaluations = 0;
   EXPECT_FALSE(untangle_loops(s, starved).simple);
+}
+
+// A pool of evaluations shared by searches (`LoopMoveOptions::shared_evaluations`, what
+// primal's SharedSearchBudget gives every search of a solid's balls): each search takes its
+// evaluations from it as well as from its own bound, copies of the options share it, and a
+// search run with an empty pool evaluates nothing and says why. The searches are the same as
+// without a pool until it runs dry.
+TEST(LoopMoves, SearchesSharingAPoolOfEvaluationsStopWhenItIsEmpty) {
+  std::vector<QuadSurface> surfaces;
+  for (std::uint32_t seed = 0; seed < 200 && surfaces.size() < 4; ++seed)
+    if (auto s = even_self_crossing(seed, 16, 10, 60)) surfaces.push_back(std::move(*s));
+  ASSERT_EQ(surfaces.size(), 4U);
+  LoopMoveOptions alone;
+  alone.max_evaluations = 3000;
+  std::vector<std::size_t> used;
+  for (const QuadSurface& s : surfaces) used.push_back(untangle_loops(s, alone).evaluations);
+  ASSERT_GT(used[0], 0U);
+
+  // A pool that holds exactly the first search's evaluations: that search is unchanged, the
+  // next one evaluates nothing.
+  LoopMoveOptions pooled = alone;
+  pooled.shared_evaluations = std::make_shared<std::size_t>(used[0]);
+  const LoopMoveResult first = untangle_loops(surfaces[0], pooled);
+  EXPECT_EQ(first.evaluations, used[0]);
+  EXPECT_EQ(first.hexes.hexes, untangle_loops(surfaces[0], alone).hexes.hexes);
+  EXPECT_EQ(*pooled.shared_evaluations, 0U);
+  const LoopMoveOptions copy = pooled;  // shares the pool
+  const LoopMoveResult second = untangle_loops(surfaces[1], copy);
+  EXPECT_EQ(second.evaluations, 0U);
+  if (used[1] > 0) {
+    EXPECT_FALSE(second.simple);
+    EXPECT_NE(second.stop_reason.find("shared pool"), std::string::npos) << second.stop_reason;
+  }
+
+  // A pool large enough for all four: they take exactly their evaluations from it.
+  std::size_t total = 0;
+  for (const std::size_t u : used) total += u;
+  pooled.shared_evaluations = std::make_shared<std::size_t>(total + 5);
+  for (std::size_t i = 0; i < surfaces.size(); ++i)
+    EXPECT_EQ(untangle_loops(surfaces[i], pooled).evaluations, used[i]) << "surface " << i;
+  EXPECT_EQ(*pooled.shared_evaluations, 5U);
 }
 
 TEST(LoopMoves, FillFrontRefusesAttachedHexesWithNodesOutOfRange) {

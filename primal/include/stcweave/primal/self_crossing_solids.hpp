@@ -32,8 +32,16 @@ struct SharedSearchBudget {
   /// (15 s): the medial fertility's balls (about 2,260 faces) ran 3.9e8 of them in 4.5 s,
   /// and with this budget the solid is meshed (the old one ran out on its first ball).
   std::size_t work = 1000000000;
-  /// Candidate moves evaluated over every ball (the `max_evaluations` unit; was 2e5).
-  std::size_t evaluations = 1000000;
+  /// Candidate moves evaluated over every ball (the `max_evaluations` unit), by every search
+  /// of a ball: the untangling, and also the fills and the rounds during the weaves of its
+  /// ways (one `stc::LoopMoveOptions::shared_evaluations` pool). Until 2026-12-07 only the
+  /// untangling was counted, with 1e6: the square ring with a rotated edge, whose balls all
+  /// block since hex contacts are checked, then searched for 20 minutes (60 balls, most of it
+  /// in the fills' deepenings) before its refusal; with 1e6 counted this way it is refused in
+  /// 23 s, but the 3 x 3 x 2 ring with a rotated edge, which meshes after 13 balls, is refused
+  /// too. At 1e7 that ring meshes (106 hexes, about 2 minutes) and a refusal takes about 4
+  /// minutes on such small balls (some 25 microseconds per evaluation).
+  std::size_t evaluations = 10000000;
 };
 
 /// Meshes `mesh` (closed, manifold, oriented outward, every handle cycle even) whose loops

@@ -19,6 +19,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -121,6 +122,13 @@ struct LoopMoveOptions {
   std::size_t tiny_front = 24;
   std::size_t tiny_depth = 8;
   std::size_t tiny_evaluations = 300000;
+  /// Evaluations left in a pool that several searches share (`primal::SharedSearchBudget`
+  /// passes one to every search of a solid's cut balls: the untangling, the fills and the
+  /// rounds during a weave): when set, each evaluation of a search run with these options, or
+  /// with a copy of them, is also taken from the pool, and the search stops at its evaluation
+  /// bound once the pool is empty. Not synchronised: the searches sharing it run one after
+  /// another.
+  std::shared_ptr<std::size_t> shared_evaluations;
   /// For debugging and tests: after every candidate move, trace the whole front again and
   /// compare its score with the one updated from the loops the move changed (the search
   /// updates the score by re-tracing only those); a difference throws `InternalError`. Slow:
