@@ -12,6 +12,7 @@
 #include "shells.hpp"
 #include "stcweave/primal/quality.hpp"
 #include "stcweave/stc/errors.hpp"
+#include "stcweave/stc/shared_nodes.hpp"
 
 namespace stcweave::primal {
 namespace {
@@ -61,35 +62,15 @@ std::string format_value(double v) {
 /// four nodes that are not a face, so the layer would not be a valid complex.
 std::vector<std::string> diagonal_contacts(const stc::QuadSurface& boundary,
                                            const std::vector<int>& shell, std::size_t shells) {
-  std::vector<std::pair<NodeId, std::size_t>> at;  // (node, quad), sorted by node
-  for (std::size_t q = 0; q < boundary.quads.size(); ++q)
-    for (const NodeId v : boundary.quads[q]) at.emplace_back(v, q);
-  std::sort(at.begin(), at.end());
-  std::vector<std::pair<std::size_t, std::size_t>> pairs;  // one per node two quads share
-  for (std::size_t i = 0; i < at.size();) {
-    std::size_t j = i + 1;
-    while (j < at.size() && at[j].first == at[i].first) ++j;
-    for (std::size_t a = i; a < j; ++a)
-      for (std::size_t b = a + 1; b < j; ++b) pairs.emplace_back(at[a].second, at[b].second);
-    i = j;
-  }
-  std::sort(pairs.begin(), pairs.end());
   std::vector<std::string> found(shells);
-  for (std::size_t i = 0; i < pairs.size();) {
-    std::size_t j = i + 1;
-    while (j < pairs.size() && pairs[j] == pairs[i]) ++j;
-    const auto [a, b] = pairs[i];
-    const bool two = j - i == 2;
-    i = j;
-    if (!two) continue;
-    const stc::Quad& qa = boundary.quads[a];
-    const stc::Quad& qb = boundary.quads[b];
-    const auto in_b = [&qb](NodeId v) { return std::find(qb.begin(), qb.end(), v) != qb.end(); };
-    bool edge = false;
-    for (std::size_t k = 0; k < 4 && !edge; ++k) edge = in_b(qa[k]) && in_b(qa[(k + 1) % 4]);
+  for (const stc::SharedNodesPair& p : stc::pairs_sharing_nodes(boundary.quads, 2)) {
+    if (p.shared != 2) continue;
+    const stc::Quad& qa = boundary.quads[p.first];
     const int sh = shell[qa[0].index()];
-    if (edge || sh < 0 || !found[static_cast<std::size_t>(sh)].empty()) continue;
-    found[static_cast<std::size_t>(sh)] = QuadId(a).str() + " and " + QuadId(b).str();
+    if (stc::shares_a_side(qa, boundary.quads[p.second]) || sh < 0 ||
+        !found[static_cast<std::size_t>(sh)].empty())
+      continue;
+    found[static_cast<std::size_t>(sh)] = QuadId(p.first).str() + " and " + QuadId(p.second).str();
   }
   return found;
 }

@@ -6,11 +6,14 @@
 
 #include <algorithm>
 #include <map>
+#include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/stc/hex_complex.hpp"
+#include "stcweave/stc/shared_nodes.hpp"
 #include "stcweave/weave/rules.hpp"
 
 namespace stcweave::weave {
@@ -134,44 +137,30 @@ std::size_t pillow_front(WeaveState& state, WeaveContext& ctx) {
 std::optional<std::string> pillow_conflict(const WeaveState& state,
                                            const std::vector<FaceIndex>& faces) {
   const Front& front = state.front;
-  std::vector<std::pair<NodeId, FaceIndex>> at;  // (node, face), sorted by node
-  at.reserve(4 * faces.size());
+  std::vector<stc::Quad> quads;
+  quads.reserve(faces.size());
   for (FaceIndex f : faces) {
     const stc::Quad& q = front.face(f).nodes;
     const std::array<FaceIndex, 1> glued{f};
     if (auto conflict = state.contact_conflict(q, glued))
       return "pillow of " + front.face(f).owner.str() + ": " + *conflict;
-    for (NodeId n : q) at.emplace_back(n, f);
+    quads.push_back(q);
   }
-  std::sort(at.begin(), at.end());
-  std::vector<std::pair<FaceIndex, FaceIndex>> pairs;  // one per node two faces share
-  for (std::size_t i = 0; i < at.size();) {
-    std::size_t j = i + 1;
-    while (j < at.size() && at[j].first == at[i].first) ++j;
-    for (std::size_t a = i; a < j; ++a)
-      for (std::size_t b = a + 1; b < j; ++b)
-        pairs.emplace_back(std::minmax(at[a].second, at[b].second));
-    i = j;
+  // Faces sharing one node: their two hexes share the node and its copy. The pairs sharing
+  // more, in order of their face indices (whichever order `faces` lists them in).
+  std::vector<std::tuple<FaceIndex, FaceIndex, std::size_t>> pairs;
+  for (const stc::SharedNodesPair& p : stc::pairs_sharing_nodes(quads, 2)) {
+    const auto [f, g] = std::minmax(faces[p.first], faces[p.second]);
+    pairs.emplace_back(f, g, p.shared);
   }
   std::sort(pairs.begin(), pairs.end());
-  for (std::size_t i = 0; i < pairs.size();) {
-    std::size_t j = i + 1;
-    while (j < pairs.size() && pairs[j] == pairs[i]) ++j;
-    const auto [f, g] = pairs[i];
-    const std::size_t shared = j - i;
-    i = j;
-    if (shared == 1) continue;  // the two hexes share the node and its copy
+  for (const auto& [f, g, shared] : pairs) {
     if (shared > 2) {
       return "pillow of " + front.face(f).owner.str() + " and " + front.face(g).owner.str() +
              ": the two faces share " + std::to_string(shared) + " nodes (two edges)";
     }
     // Two shared nodes: fine when they are an edge of f (then of g too, on a manifold front).
-    const stc::Quad& qf = front.face(f).nodes;
-    const stc::Quad& qg = front.face(g).nodes;
-    const auto in_g = [&qg](NodeId n) { return std::find(qg.begin(), qg.end(), n) != qg.end(); };
-    bool edge = false;
-    for (int k = 0; k < 4 && !edge; ++k) edge = in_g(quad_at(qf, k)) && in_g(quad_at(qf, k + 1));
-    if (!edge) {
+    if (!stc::shares_a_side(front.face(f).nodes, front.face(g).nodes)) {
       return "pillow of " + front.face(f).owner.str() + " and " + front.face(g).owner.str() +
              ": the two faces share two nodes that are not an edge";
     }

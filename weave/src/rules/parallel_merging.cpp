@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "stcweave/stc/errors.hpp"
+#include "stcweave/stc/shared_nodes.hpp"
 #include "stcweave/weave/rules.hpp"
 
 namespace stcweave::weave {
@@ -27,32 +28,15 @@ namespace {
 /// Why two of the new hexes `hexes` would share more than a face, or four nodes that are not
 /// a face of both, if two would (the batch's own `WeaveState::contact_conflict`).
 std::optional<std::string> batch_contact_conflict(const std::vector<stc::Hex>& hexes) {
-  std::vector<std::pair<NodeId, std::uint32_t>> at;  // (node, new hex), sorted by node
-  at.reserve(8 * hexes.size());
-  for (std::size_t i = 0; i < hexes.size(); ++i)
-    for (NodeId n : hexes[i]) at.emplace_back(n, static_cast<std::uint32_t>(i));
-  std::sort(at.begin(), at.end());
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;  // one per shared node
-  for (std::size_t i = 0; i < at.size();) {
-    std::size_t j = i + 1;
-    while (j < at.size() && at[j].first == at[i].first) ++j;
-    for (std::size_t a = i; a < j; ++a)
-      for (std::size_t b = a + 1; b < j; ++b) pairs.emplace_back(at[a].second, at[b].second);
-    i = j;
-  }
-  std::sort(pairs.begin(), pairs.end());
   const auto has_face = [](const stc::Hex& h, const std::array<NodeId, 4>& key) {
     for (int lf = 0; lf < 6; ++lf)
       if (quad_sorted(stc::hex_face(h, lf)) == key) return true;
     return false;
   };
-  for (std::size_t i = 0; i < pairs.size();) {
-    std::size_t j = i + 1;
-    while (j < pairs.size() && pairs[j] == pairs[i]) ++j;
-    const std::size_t shared = j - i;
-    const auto [a, b] = pairs[i];
-    i = j;
-    if (shared < 4) continue;
+  for (const stc::SharedNodesPair& pair : stc::pairs_sharing_nodes(hexes, 4)) {
+    const std::size_t a = pair.first;
+    const std::size_t b = pair.second;
+    const std::size_t shared = pair.shared;
     bool face = false;
     if (shared == 4) {
       std::array<NodeId, 4> key{};

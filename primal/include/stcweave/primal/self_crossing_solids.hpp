@@ -38,9 +38,10 @@ struct SharedSearchBudget {
   /// untangling was counted, with 1e6: the square ring with a rotated edge, whose balls all
   /// block since hex contacts are checked, then searched for 20 minutes (60 balls, most of it
   /// in the fills' deepenings) before its refusal; with 1e6 counted this way it is refused in
-  /// 23 s, but the 3 x 3 x 2 ring with a rotated edge, which meshes after 13 balls, is refused
-  /// too. At 1e7 that ring meshes (106 hexes, about 2 minutes) and a refusal takes about 4
-  /// minutes on such small balls (some 25 microseconds per evaluation).
+  /// 23 s, but the 3 x 3 x 2 ring with a rotated edge, which meshes with the old count, is
+  /// refused too. At 1e7 that ring meshes (106 hexes, about 2 minutes) and the square ring's
+  /// refusal takes 4.5 minutes of CPU time (some 27 microseconds per evaluation on such
+  /// small balls).
   std::size_t evaluations = 10000000;
 };
 
