@@ -171,7 +171,9 @@ PillowReport pillow(HexMesh& mesh, const stc::QuadSurface& boundary, const Pillo
   std::string skipped;
   const std::vector<std::string> diagonal = diagonal_contacts(boundary, shell, r.shells);
   for (std::size_t sh = 0; sh < r.shells; ++sh) {
-    if (!selected[sh] || diagonal[sh].empty()) continue;
+    if (diagonal[sh].empty()) continue;
+    r.unpillowable += (r.unpillowable.empty() ? "" : ", ") + diagonal[sh];
+    if (!selected[sh]) continue;
     selected[sh] = false;
     skipped += (skipped.empty() ? "" : ", ") + diagonal[sh];
   }

@@ -230,6 +230,42 @@ TEST(SelfCrossing, PipelineMeshesASphereTheWeaveCompletesByItsFill) {
   EXPECT_EQ(rescued.woven.stats.fill_hexes, 0U);
 }
 
+// What a user receives for a loop-clean sphere whose woven complex keeps pinched face pairs
+// at boundary nodes while two of its quads meet at two opposite corners (shape 4 of the 18
+// loop-clean 16-quad shapes of the closure): the pairs need the pillow layer, which such a
+// boundary cannot have (two of its hexes would share four nodes off a face), so the pipeline
+// refuses the complex with a WeaveError (exit code 3) that names the two quads, not an
+// internal error advising --pillow always. Measured 2026-12-07 through the pipeline: 3 of the
+// 18 loop-clean 16-quad shapes and 19 of the 95 18-quad ones end this way under reliable.
+TEST(SelfCrossing, PipelineRefusesPinchedPairsItsBoundaryCannotBePillowedFor) {
+  auto closure = test::sphere_closure(16);
+  std::vector<stc::QuadSurface> clean;
+  for (stc::QuadSurface& s : closure.at(16))
+    if (stc::find_loops(s).num_self_intersecting() == 0) clean.push_back(std::move(s));
+  ASSERT_EQ(clean.size(), 18U);
+  const SurfaceMesh mesh = on_sphere(clean[4]);
+  MeshOptions options;
+  options.weave.rules = weave::RuleSet::Reliable;
+  options.untangle = false;
+  try {
+    (void)mesh_file(file_of(mesh, "pinched"), options);
+    FAIL() << "shape 4 is meshed now: assert its mesh instead";
+  } catch (const WeaveError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("pinched face pairs"), std::string::npos) << what;
+    EXPECT_NE(what.find("the boundary cannot be pillowed"), std::string::npos) << what;
+    EXPECT_NE(what.find("share two nodes that are not an edge"), std::string::npos) << what;
+    EXPECT_EQ(what.find("--pillow always"), std::string::npos) << what;
+  }
+  // With --keep-invalid the complex comes back, invalid, and the report says which quads.
+  options.keep_invalid = true;
+  const MeshResult r = mesh_file(file_of(mesh, "pinched"), options);
+  EXPECT_FALSE(r.validation.valid);
+  EXPECT_GT(r.pillow.pinched_left, 0U);
+  EXPECT_FALSE(r.pillow.applied);
+  EXPECT_NE(r.pillow.unpillowable.find(" and "), std::string::npos) << r.pillow.unpillowable;
+}
+
 // A loop-clean sphere whose weave blocks even with the block recovery (a defect of the weaver,
 // docs/weave-recovery.md) is woven by the other ways of the front-move stage: the pipeline
 // says so in its report, the complex is certified against the input, and the outcome repeats.

@@ -78,6 +78,10 @@ struct PillowReport {
   std::size_t hexes_added = 0;  ///< one per boundary quad of a pillowed shell
   /// One line: which mode, whether pillowed, and why (names the worst fixed corner).
   std::string reason;
+  /// Per shell that no mode can pillow, selected or not, two of its quads that share two
+  /// nodes that are not an edge ("q3 and q9", joined by ", "); empty when every shell can be
+  /// pillowed. The pipeline names them when pinched face pairs at boundary nodes are left.
+  std::string unpillowable;
   /// Auto with `compare`: both complexes were positioned and compared (`choose_pillowed`).
   bool compared = false;
   /// After the pillow (pipeline, `unpinch` in primal/src/position_pinch.hpp): pinched face

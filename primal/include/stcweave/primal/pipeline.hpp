@@ -165,7 +165,9 @@ struct MeshResult {
 /// \throw Unsupported for nested shells, handles that `weave_solids` cannot cut, or loops
 ///        when no cut of a solid with self-intersecting loops can be woven and glued.
 /// \throw WeaveError when the weave is blocked, or the search for front moves of a surface
-///        with self-intersecting loops gives up.
+///        with self-intersecting loops gives up, or (unless keep_invalid) the complex keeps
+///        pinched face pairs at boundary nodes on a shell that cannot be pillowed
+///        (`PillowReport::unpillowable`).
 /// \throw InternalError when the woven complex breaks an invariant (unless keep_invalid).
 /// \throw InvalidInput with `interior.mode` Tets, for a surface that is not triangle-split or
 ///        not one shell, or that Gmsh cannot tetrahedralise.
