@@ -388,29 +388,25 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
                          std::to_string(u.hexes_added) + " hexes), " +
                          std::to_string(u.pinched_after) + " left";
       r.validation = stc::validate_hex_complex(r.mesh.complex, &r.surface.surface, true);
-      if (!r.validation.valid && !options.keep_invalid && !r.pillow.unpillowable.empty()) {
-        // Not a bug: the pairs at boundary nodes need the pillow layer, which such a shell
-        // cannot have (its hexes would share four nodes off a face).
-        throw WeaveError(
-            "the woven complex has " + std::to_string(u.pinched_after) +
-            " pinched face pairs (two faces sharing two edges at a node, no placement makes "
-            "the hexes there valid; " +
-            r.validation.summary() +
-            ") that no pillow of a 2-hex block of interior nodes removes, and the boundary "
-            "cannot be pillowed: its quads " +
-            r.pillow.unpillowable +
-            " share two nodes that are not an edge, so their pillow hexes would share four "
-            "nodes off a face (docs/self-intersecting-loops.md \"Hexes sharing four nodes off a "
-            "face\"); re-mesh the surface so that no two quads meet at two opposite corners "
-            "(--keep-invalid writes the mesh anyway)");
-      }
       if (!r.validation.valid && !options.keep_invalid) {
-        throw InternalError(
+        const std::string pairs =
             "the woven complex has " + std::to_string(u.pinched_after) +
             " pinched face pairs (two faces sharing two edges at a node, no placement makes "
             "the hexes there valid; " +
-            r.validation.summary() + ") that no pillow of a 2-hex block of interior nodes " +
-            "removes" + (r.pillow.applied ? std::string() : std::string(": try --pillow always")) +
+            r.validation.summary() + ") that no pillow of a 2-hex block of interior nodes removes";
+        if (!r.pillow.unpillowable.empty()) {
+          // Not a bug: the pairs at boundary nodes need the pillow layer, which such a shell
+          // cannot have (its hexes would share four nodes off a face).
+          throw WeaveError(pairs + ", and the boundary cannot be pillowed: its quads " +
+                           r.pillow.unpillowable +
+                           " share two nodes that are not an edge, so their pillow hexes would "
+                           "share four nodes off a face (docs/self-intersecting-loops.md "
+                           "\"Hexes sharing four nodes off a face\"); re-mesh the surface so that "
+                           "no two quads meet at two opposite corners (--keep-invalid writes the "
+                           "mesh anyway)");
+        }
+        throw InternalError(
+            pairs + (r.pillow.applied ? std::string() : std::string(": try --pillow always")) +
             " (--keep-invalid writes the mesh anyway)");
       }
     }

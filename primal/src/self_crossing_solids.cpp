@@ -34,7 +34,6 @@ weave::WeaveResult weave_solids_self_crossing(const SurfaceMesh& mesh,
   // shared_evaluations), whose deepenings on small fronts are where the time goes when the
   // weaves block (up to 300,000 evaluations each, several seconds).
   const auto pool = std::make_shared<std::size_t>(budget.evaluations);
-  std::size_t evaluations_left = budget.evaluations;
   std::size_t searched_balls = 0;
   std::size_t gave_up = 0;
   bool exhausted = false;
@@ -53,8 +52,7 @@ weave::WeaveResult weave_solids_self_crossing(const SurfaceMesh& mesh,
       return weave::weave(ball.surface, ball_options, angles);
     SelfCrossingOptions ball_search = options;
     ball_search.search.max_work = std::min(ball_search.search.max_work, work_left);
-    ball_search.search.max_evaluations =
-        std::min(ball_search.search.max_evaluations, evaluations_left);
+    ball_search.search.max_evaluations = std::min(ball_search.search.max_evaluations, *pool);
     ball_search.search.shared_evaluations = pool;
     ++searched_balls;
     SelfCrossingReport one;
@@ -71,8 +69,7 @@ weave::WeaveResult weave_solids_self_crossing(const SurfaceMesh& mesh,
                                       ? std::max(work, ball_search.search.max_work)
                                       : work;
       work_left -= std::min(work_left, charged);
-      evaluations_left = *pool;
-      if (work_left == 0 || evaluations_left == 0) exhausted = true;
+      if (work_left == 0 || *pool == 0) exhausted = true;
     };
     try {
       weave::WeaveResult r = weave_self_crossing(ball, ball_options, angles, ball_search, one);
@@ -105,7 +102,7 @@ weave::WeaveResult weave_solids_self_crossing(const SurfaceMesh& mesh,
            std::to_string(gave_up) + " of whose searches gave up (the last: " + last_stop +
            "); shared budget " + std::to_string(budget.work) + " face evaluations and " +
            std::to_string(budget.evaluations) + " moves, " + std::to_string(work_left) + " and " +
-           std::to_string(evaluations_left) + " left";
+           std::to_string(*pool) + " left";
   };
   weave::WeaveResult result;
   try {

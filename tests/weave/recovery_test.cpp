@@ -9,6 +9,7 @@
 
 #include <string>
 
+#include "blocked_spheres.hpp"
 #include "sphere_quads.hpp"
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/stc/validate.hpp"
@@ -154,16 +155,7 @@ TEST(FrontPillow, PutsOneHexOnEveryFaceOfTheCube) {
 /// Four quads around two poles a = 0 and c = 1 (b, d, e, f = 2..5 of valence 2): quads 0 and
 /// 2 share only the poles, two opposite nodes of both; quads 0 and 1 share two edges.
 stc::QuadSurface four_lunes() {
-  stc::QuadSurface s;
-  s.num_nodes = 6;
-  const auto q = [&s](int a, int b, int c, int d) {
-    s.quads.push_back({NodeId(a), NodeId(b), NodeId(c), NodeId(d)});
-  };
-  q(0, 2, 1, 3);
-  q(0, 3, 1, 4);
-  q(0, 4, 1, 5);
-  q(0, 5, 1, 2);
-  return s;
+  return test::surface_of_quads(6, {{0, 2, 1, 3}, {0, 3, 1, 4}, {0, 4, 1, 5}, {0, 5, 1, 2}});
 }
 
 TEST(FrontPillow, ConflictNamesFacesOnTwoOppositeNodesOrTwoEdges) {
