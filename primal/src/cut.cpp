@@ -1269,16 +1269,17 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
         hc.grid_a = 1;
         hc.grid_b = 4;  // an annulus of 1 x 4 quads
         hc.attempts = 1;
+        // With handles the column is not cut off but attached: woven apart, the joined
+        // shell's weave may fill the column's place with hexes of its own (its front does
+        // not hold the column's quads); attached, the weaver knows the hex behind the
+        // annulus and builds none sharing two faces with it. Without handles it is cut off
+        // first, and attached when that weave blocks or glues into an invalid complex.
+        columns.push_back(
+            {inner[0], inner[1], inner[2], inner[3], outer[0], outer[1], outer[2], outer[3]});
         if (genus == 0) {
           current = cut_annulus(current, outer, inner);
           hc.disc = "annulus 1x4";
         } else {
-          // With handles the column is not cut off but attached: woven apart, the joined
-          // shell's weave may fill the column's place with hexes of its own (its front does
-          // not hold the column's quads); attached, the weaver knows the hex behind the
-          // annulus and builds none sharing two faces with it.
-          columns.push_back(
-              {inner[0], inner[1], inner[2], inner[3], outer[0], outer[1], outer[2], outer[3]});
           hc.disc = "column hex";
         }
         rep.cuts.push_back(hc);
@@ -1294,14 +1295,52 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
                             "self-intersecting loop: not supported yet");
         }
         rep.cut_seconds += seconds_since(t0);
-        const auto t1 = std::chrono::steady_clock::now();
-        const BallWeave w = weave_ball(current, options, next_final, cut_options);
-        rep.weave_seconds += seconds_since(t1);
-        const std::string problem = glue_problem(w.hexes, next_final + w.interior, rep);
+        auto t1 = std::chrono::steady_clock::now();
+        BallWeave w;
+        std::string problem;
+        bool blocked = false;
+        try {
+          w = weave_ball(current, options, next_final, cut_options);
+          rep.weave_seconds += seconds_since(t1);
+          problem = glue_problem(w.hexes, next_final + w.interior, rep);
+          if (!problem.empty())
+            problem =
+                "woven and glued back, it breaks an invariant (" + problem.substr(0, 200) + ")";
+        } catch (const WeaveError& e) {
+          rep.weave_seconds += seconds_since(t1);
+          problem = std::string("its weave blocks (") + std::string(e.what()).substr(0, 200) + ")";
+          blocked = true;
+        }
         if (!problem.empty()) {
-          throw Unsupported(ComponentId(c).str() +
-                            ": the cavity cut woven and glued back breaks an invariant (" +
-                            problem.substr(0, 200) + ")");
+          // The columns attached to the front of the uncut solid instead (as with handles).
+          // Measured: the hollow cubes whose cavity is more than one cell wide glued into a
+          // face of three hexes when cut off (docs/topology.md "Several shells").
+          t1 = std::chrono::steady_clock::now();
+          std::string second;
+          bool second_blocked = false;
+          try {
+            w = weave_ball(solid, options, next_final, cut_options, columns);
+            rep.weave_seconds += seconds_since(t1);
+            second = glue_problem(w.hexes, next_final + w.interior, rep);
+            if (!second.empty()) second = "breaks an invariant (" + second.substr(0, 200) + ")";
+          } catch (const WeaveError& e) {
+            rep.weave_seconds += seconds_since(t1);
+            second = std::string("blocks (") + std::string(e.what()).substr(0, 200) + ")";
+            second_blocked = true;
+          } catch (const InvalidInput& e) {
+            // (e.g. loops of the joined front that cross themselves)
+            rep.weave_seconds += seconds_since(t1);
+            second = std::string("is refused (") + std::string(e.what()).substr(0, 200) + ")";
+          }
+          if (!second.empty()) {
+            const std::string why =
+                ComponentId(c).str() + ": its cavities cut off along annuli, " + problem +
+                "; with the column hexes attached to the front its weave " + second;
+            if (blocked && second_blocked) throw WeaveError(why);
+            throw Unsupported(why);
+          }
+          for (std::size_t k = rep.cuts.size() - cavities[c].size(); k < rep.cuts.size(); ++k)
+            rep.cuts[k].disc = "column hex";
         }
         next_final += w.interior;
         append_ball(result, w);

@@ -243,15 +243,8 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
 
   stage("orient");
   r.orientation = orient_outward(r.surface);
-  for (std::size_t c = 0; c < r.orientation.nesting_depth.size(); ++c) {
-    if (r.orientation.nesting_depth[c] > 1) {
-      throw Unsupported("component " + std::to_string(c) + " of " + file.path +
-                        " lies inside a cavity of another shell (nesting depth " +
-                        std::to_string(r.orientation.nesting_depth[c]) +
-                        "): not supported yet; mesh the solids separately");
-    }
-    if (r.orientation.nesting_depth[c] == 1) whole = false;  // a cavity: weave_solids
-  }
+  // Cavities and solids inside cavities (any nesting depth) are several shells, so not
+  // `whole`: weave_solids weaves each solid with the cavities it is the innermost solid around.
   r.seconds.orient = clock.lap();
 
   stage("weave");

@@ -236,13 +236,6 @@ Shells find_shells(const SurfaceMesh& surface, const stc::TriangleSplit& split) 
   std::vector<std::size_t> solid_of(shells.count, SIZE_MAX);
   for (std::size_t i = 0; i < shells.count; ++i) {
     if (volume[i] <= 0.0) continue;
-    for (std::size_t j = 0; j < shells.count; ++j) {
-      if (j != i && volume[j] > 0.0 && inside(i, j)) {
-        throw Unsupported("tet interior: shell " + std::to_string(i) +
-                          " is a solid inside the cavity of another (a nesting the tet "
-                          "interior does not take); use --interior weave");
-      }
-    }
     solid_of[i] = shells.solids.size();
     shells.solids.push_back({i, {}});
   }

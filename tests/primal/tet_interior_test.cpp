@@ -291,23 +291,22 @@ TEST_F(TetInterior, AnInwardShellInsideNoSolidIsRefused) {
                                      "an inward shell outside every solid");
 }
 
-TEST_F(TetInterior, ASolidInsideACavityIsRefused) {
-  // The hollow box with a small solid box floating in its cavity: a nesting the tet interior
-  // does not take (Unsupported, not a wrong mesh).
+TEST_F(TetInterior, ASolidInsideACavityIsMeshed) {
+  // The hollow box with a small solid box floating in its cavity (nesting depth 2): the
+  // floating box is a Gmsh volume of its own, the hollow box one with a hole.
   const SurfaceMesh core = test::translated(test::box_surface(1, 1, 1, 0.5, 0.5, 0.5),
                                             Eigen::RowVector3d(1.75, 1.75, 1.75));
   const SurfaceMesh nested = test::merged_surfaces({hollow_box(), triangle_split_of(core)});
   MeshOptions options;
   options.interior.mode = InteriorMode::Tets;
-  try {
-    (void)mesh_file(test::file_of(nested, "nested"), options);
-    FAIL() << "a solid inside a cavity was accepted";
-  } catch (const Unsupported& e) {
-    EXPECT_NE(std::string(e.what()).find("nesting depth 2"), std::string::npos) << e.what();
-  }
-  // The stage itself refuses it too, for a caller that skips the pipeline's checks.
-  expect_stage_refuses<Unsupported>(nested, "inside the cavity of another",
-                                    "a solid inside a cavity");
+  const MeshResult r = mesh_file(test::file_of(nested, "nested"), options);
+  EXPECT_TRUE(r.interior.used) << r.interior.reason;
+  EXPECT_GT(r.interior.tets, 0u);
+  const stc::ValidationReport v = stc::validate_hex_complex(r.mesh.complex, &r.surface.surface);
+  EXPECT_TRUE(v.valid) << v.summary();
+  EXPECT_TRUE(v.boundary_compared);
+  EXPECT_EQ(r.quality.inverted, 0u);
+  EXPECT_EQ(r.orientation.nesting_depth, (std::vector<int>{0, 1, 2}));
 }
 
 }  // namespace

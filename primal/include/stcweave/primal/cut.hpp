@@ -98,8 +98,9 @@ struct SolidsReport {
 /// Weaves every solid of `mesh` on its own, cutting its handles first, and combines them:
 /// input nodes keep their ids, interior nodes (disc nodes included) follow, solid by solid.
 /// \pre `mesh` is closed, manifold, oriented outward (`orient_outward`; a cavity's shell then
-///      faces into the cavity), no shell inside a cavity, every handle cycle even
-///      (`require_weavable`).
+///      faces into the cavity), every handle cycle even (`require_weavable`). Solids inside
+///      cavities (any nesting depth) are solids of their own; each cavity belongs to the
+///      smallest solid that encloses it.
 /// \throw Unsupported when the handle diagnosis cannot decide, when handle cycles share nodes,
 ///        when no disc choice gives a loop-clean cut, a complete weave and a valid glue, for a
 ///        cavity with handles, for a solid with handles and cavities whose loops cross

@@ -162,7 +162,7 @@ struct MeshResult {
 /// Meshes the quad surface of `file` (its quads, or the boundary of its hexes).
 /// \throw TopologyError for a surface that cannot be woven (see `require_weavable`).
 /// \throw TopologyError for an odd handle cycle (no hex mesh exists).
-/// \throw Unsupported for nested shells, handles that `weave_solids` cannot cut, or loops
+/// \throw Unsupported for handles that `weave_solids` cannot cut, or loops
 ///        when no cut of a solid with self-intersecting loops can be woven and glued.
 /// \throw WeaveError when the weave is blocked, or the search for front moves of a surface
 ///        with self-intersecting loops gives up, or (unless keep_invalid) the complex keeps

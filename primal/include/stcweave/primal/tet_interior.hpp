@@ -83,7 +83,7 @@ struct TetInteriorReport {
 /// the shells of negative volume inside it (cavities) as holes.
 /// \pre `surface` is closed and oriented outward (a cavity's shell into the cavity); `split`
 ///      is its triangle split.
-/// \throw Unsupported when stcweave was built without Gmsh, or for a solid inside a cavity.
+/// \throw Unsupported when stcweave was built without Gmsh.
 /// \throw InvalidInput when Gmsh cannot tetrahedralise the solid while keeping the boundary
 ///        triangles (for instance a self-intersecting surface), with Gmsh's reason.
 weave::WeaveResult tet_interior(const SurfaceMesh& surface, const stc::TriangleSplit& split,
