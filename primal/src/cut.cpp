@@ -1333,9 +1333,11 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
             second = std::string("is refused (") + std::string(e.what()).substr(0, 200) + ")";
           }
           if (!second.empty()) {
-            const std::string why =
-                ComponentId(c).str() + ": its cavities cut off along annuli, " + problem +
-                "; with the column hexes attached to the front its weave " + second;
+            std::string why = ComponentId(c).str();
+            why += ": its cavities cut off along annuli, ";
+            why += problem;
+            why += "; with the column hexes attached to the front its weave ";
+            why += second;
             if (blocked && second_blocked) throw WeaveError(why);
             throw Unsupported(why);
           }
