@@ -1295,57 +1295,58 @@ weave::WeaveResult weave_solids(const SurfaceMesh& mesh, const weave::WeaveOptio
                             "self-intersecting loop: not supported yet");
         }
         rep.cut_seconds += seconds_since(t0);
-        auto t1 = std::chrono::steady_clock::now();
-        BallWeave w;
-        std::string problem;
-        bool blocked = false;
-        try {
-          w = weave_ball(current, options, next_final, cut_options);
-          rep.weave_seconds += seconds_since(t1);
-          problem = glue_problem(w.hexes, next_final + w.interior, rep);
-          if (!problem.empty())
-            problem =
-                "woven and glued back, it breaks an invariant (" + problem.substr(0, 200) + ")";
-        } catch (const WeaveError& e) {
-          rep.weave_seconds += seconds_since(t1);
-          problem = std::string("its weave blocks (") + std::string(e.what()).substr(0, 200) + ")";
-          blocked = true;
-        }
-        if (!problem.empty()) {
+        // One weave, of the cut-off surface or of the uncut solid with `attached` on its front,
+        // glued after what is woven so far: `problem` empty when the result is valid, else why
+        // not, to follow "its weave".
+        struct Attempt {
+          BallWeave w;
+          std::string problem;
+          bool blocked = false;
+        };
+        const auto weave_and_glue = [&](const CutSurface& s,
+                                        const std::vector<stc::Hex>& attached) {
+          Attempt a;
+          const auto t1 = std::chrono::steady_clock::now();
+          try {
+            a.w = weave_ball(s, options, next_final, cut_options, attached);
+            rep.weave_seconds += seconds_since(t1);
+            a.problem = glue_problem(a.w.hexes, next_final + a.w.interior, rep);
+            if (!a.problem.empty())
+              a.problem = "glued back breaks an invariant (" + a.problem.substr(0, 200) + ")";
+          } catch (const WeaveError& e) {
+            rep.weave_seconds += seconds_since(t1);
+            a.problem = std::string("blocks (") + std::string(e.what()).substr(0, 200) + ")";
+            a.blocked = true;
+          } catch (const InvalidInput& e) {
+            // (the joined front's loops crossing themselves, say); on the cut-off surface a
+            // refusal stays one
+            if (attached.empty()) throw;
+            rep.weave_seconds += seconds_since(t1);
+            a.problem = std::string("is refused (") + std::string(e.what()).substr(0, 200) + ")";
+          }
+          return a;
+        };
+        Attempt woven = weave_and_glue(current, {});
+        if (!woven.problem.empty()) {
           // The columns attached to the front of the uncut solid instead (as with handles).
           // Measured: the hollow cubes whose cavity is more than one cell wide glued into a
           // face of three hexes when cut off (docs/topology.md "Several shells").
-          t1 = std::chrono::steady_clock::now();
-          std::string second;
-          bool second_blocked = false;
-          try {
-            w = weave_ball(solid, options, next_final, cut_options, columns);
-            rep.weave_seconds += seconds_since(t1);
-            second = glue_problem(w.hexes, next_final + w.interior, rep);
-            if (!second.empty()) second = "breaks an invariant (" + second.substr(0, 200) + ")";
-          } catch (const WeaveError& e) {
-            rep.weave_seconds += seconds_since(t1);
-            second = std::string("blocks (") + std::string(e.what()).substr(0, 200) + ")";
-            second_blocked = true;
-          } catch (const InvalidInput& e) {
-            // (e.g. loops of the joined front that cross themselves)
-            rep.weave_seconds += seconds_since(t1);
-            second = std::string("is refused (") + std::string(e.what()).substr(0, 200) + ")";
-          }
-          if (!second.empty()) {
+          Attempt joined = weave_and_glue(solid, columns);
+          if (!joined.problem.empty()) {
             std::string why = ComponentId(c).str();
-            why += ": its cavities cut off along annuli, ";
-            why += problem;
+            why += ": its cavities cut off along annuli, their weave ";
+            why += woven.problem;
             why += "; with the column hexes attached to the front its weave ";
-            why += second;
-            if (blocked && second_blocked) throw WeaveError(why);
+            why += joined.problem;
+            if (woven.blocked && joined.blocked) throw WeaveError(why);
             throw Unsupported(why);
           }
+          woven = std::move(joined);
           for (std::size_t k = rep.cuts.size() - cavities[c].size(); k < rep.cuts.size(); ++k)
             rep.cuts[k].disc = "column hex";
         }
-        next_final += w.interior;
-        append_ball(result, w);
+        next_final += woven.w.interior;
+        append_ball(result, woven.w);
         continue;
       }
       // Handles too: the handle route goes on, its balls woven with the column hexes on their

@@ -279,6 +279,25 @@ TEST(Pipeline, HollowCubesWhoseCavityIsWiderThanACellAreMeshed) {
             << thick.quality.min_scaled_jacobian << "\n";
 }
 
+TEST(Pipeline, AHollowSolidBothOfWhoseRoutesBlockIsRefusedNamingBoth) {
+  // With a rule budget too small for any weave, the cavity cut off and the column attached
+  // both block: a WeaveError (exit code 3) naming the two routes, no mesh.
+  MeshOptions starved;
+  starved.weave.max_rules = 5;
+  starved.untangle = false;
+  try {
+    (void)mesh_file(file_of(hollow_cube(6, 2, 2.0), "starved hollow cube"), starved);
+    ADD_FAILURE() << "a weave of 5 rules meshed a hollow cube";
+  } catch (const WeaveError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("cavities cut off along annuli, their weave blocks"), std::string::npos)
+        << what;
+    EXPECT_NE(what.find("with the column hexes attached to the front its weave blocks"),
+              std::string::npos)
+        << what;
+  }
+}
+
 TEST(Pipeline, ASolidInsideACavityIsMeshedOnItsOwn) {
   // A 6 x 6 x 6 cube with a 4 x 4 x 4 cavity, a unit cube floating in the cavity (nesting
   // depth 2) and a second one: three solids' shells and one cavity, woven as two solids.
