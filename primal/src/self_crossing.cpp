@@ -7,6 +7,7 @@
 #include <optional>
 #include <unordered_map>
 
+#include "stcweave/primal/edge_angles.hpp"
 #include "stcweave/primal/io.hpp"
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/stc/validate.hpp"
@@ -213,7 +214,21 @@ weave::WeaveResult weave_self_crossing(const SurfaceMesh& surface,
       front.quads.push_back(c);
     }
     std::vector<std::array<double, 4>> angles;
-    if (!side_angles.empty()) {
+    if (!side_angles.empty() && !residual && surface.points.rows() > 0) {
+      // The extended rules read the front's own dihedral angles, its attached hexes' nodes
+      // placed as for viewing (`front_points`). Measured on gmsh-quad/cylinder2_c3: with the
+      // angles guessed from the input and the attached hexes (below), every weave of its
+      // loop-clean front after 50 attached hexes blocked or ran out of rules; with these the
+      // weave with recovery pillows completes (docs/self-intersecting-loops.md).
+      const Points all = front_points(surface.points, base_moves);
+      SurfaceMesh placed;
+      placed.points.resize(static_cast<Eigen::Index>(front.num_nodes), 3);
+      for (std::size_t i = 0; i < front_nodes.size(); ++i)
+        placed.points.row(static_cast<Eigen::Index>(i)) = all.row(front_nodes[i].value());
+      placed.surface = front;
+      angles = dihedral_angles(placed);
+    } else if (!side_angles.empty()) {
+      // (A residual front has no positions: angles from the input's and the attached hexes'.)
       std::unordered_map<std::uint64_t, std::size_t> directed;
       const auto key = [](NodeId a, NodeId b) {
         return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a.value())) << 32U) |
