@@ -30,7 +30,13 @@ void add_cad_options(CLI::App* sub, CadArgs& args, const std::string& input) {
       sub->add_option("--cad-triangles", args.triangle_algorithm,
                       "CAD input: Gmsh's triangle algorithm for the split faces: 1 MeshAdapt, "
                       "5 Delaunay, 6 Frontal-Delaunay")
-          ->check(CLI::IsMember({1, 5, 6}))
+          ->check(
+              [](const std::string& value) -> std::string {
+                if (value == "1" || value == "5" || value == "6") return {};
+                return "must be 1 (MeshAdapt), 5 (Delaunay) or 6 (Frontal-Delaunay), not '" +
+                       value + "'";
+              },
+              "1|5|6")
           ->capture_default_str()
           ->group(group);
   CLI::Option* no_split =

@@ -57,6 +57,7 @@ void print_report(const primal::SurfaceDiagnosis& d, std::ostream& out) {
   }
   out << "\n";
   out << "degenerate quads: " << d.degenerate_quads << "\n";
+  out << "duplicate quads: " << d.duplicate_quads << "\n";
   out << "non-finite nodes: " << d.nonfinite_nodes << "\n";
   out << "coincident nodes: " << d.coincident_nodes << "\n";
   if (d.loops) {

@@ -683,25 +683,31 @@ Action add_mesh_command(CLI::App& app) {
                   "where the front goes when the search for loop moves gives up (default: "
                   "OUT.front.obj)");
   sub->add_option("--loop-moves-max", args->loop_moves_max, "loop moves: most hexes attached")
+      ->check(kCount)
       ->capture_default_str();
   sub->add_option("--loop-moves-beam-depth", args->loop_moves_beam_depth,
                   "loop moves: moves looked ahead when no single move helps")
+      ->check(kCount)
       ->capture_default_str();
   sub->add_option("--loop-moves-beam-width", args->loop_moves_beam_width,
                   "loop moves: fronts kept per level of that look-ahead")
+      ->check(kCount)
       ->capture_default_str();
   sub->add_option("--loop-moves-evaluations", args->loop_moves_evaluations,
                   "loop moves: candidate moves evaluated in all (the search's evaluation bound)")
+      ->check(kCount)
       ->capture_default_str();
   sub->add_option("--loop-moves-work", args->loop_moves_work,
                   "loop moves: work bound, the sum over evaluated candidates of the front's "
                   "faces (about 5 s on a 10,000-quad surface at the default)")
+      ->check(kCount)
       ->capture_default_str();
   sub->add_option("--loop-moves-tiny-depth", args->loop_moves_tiny_depth,
                   "loop moves: on a front of at most " +
                       std::to_string(primal::SelfCrossingOptions{}.search.tiny_front) +
                       " faces where every look-ahead stalls, search every sequence of up to "
                       "this many moves (0: off)")
+      ->check(kCount)
       ->capture_default_str();
   sub->add_flag("--depth-filter-always", args->depth_filter_always,
                 "extended: weave a genus-0 shell with the depth filter from the start (by default "
@@ -746,7 +752,7 @@ Action add_mesh_command(CLI::App& app) {
           used = 0;
         }
         if (used == value.size() && floor >= 0.0 && floor <= 1.0) return {};
-        return "--tet-flips must be off or a quality floor from 0 to 1, not '" + value + "'";
+        return "must be off or a quality floor from 0 to 1, not '" + value + "'";
       });
   sub->add_option("--position-rounds", args->position_rounds,
                   "untangling: most rounds of (minimise, lower epsilon)")

@@ -5,6 +5,7 @@
 /// returns the exit code and lets library exceptions escape (main maps them to codes).
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
@@ -34,6 +35,19 @@ inline const CLI::Validator kFinite(
       return "must be a finite number, not " + text;
     },
     "FINITE");
+
+/// A count (an unsigned option): digits only, at most 18 of them (below 10^18). CLI11 reads
+/// "-1" into an unsigned as its wrap-around and an empty or overflowing value without an
+/// error, so such options check the text first: `->check(kCount)`.
+inline const CLI::Validator kCount(
+    [](std::string& text) -> std::string {
+      const bool digits = !text.empty() && text.size() <= 18 &&
+                          std::all_of(text.begin(), text.end(),
+                                      [](unsigned char c) { return c >= '0' && c <= '9'; });
+      if (digits) return {};
+      return "must be a whole number from 0 to 999999999999999999, not '" + text + "'";
+    },
+    "COUNT");
 
 Action add_loops_command(CLI::App& app);
 Action add_sheets_command(CLI::App& app);

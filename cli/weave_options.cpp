@@ -78,6 +78,7 @@ void add_weave_options(CLI::App* sub, WeaveArgs& args) {
       "switch off the geometric precondition of the cross (no cross on a too flat corner)");
   sub->add_option("--max-rules", args.max_rules,
                   "give up weaving after this many rule applications (0: 8 quads^1.5 + 20000)")
+      ->check(kCount)
       ->capture_default_str()
       ->group(group);
   sub->add_option("--block-recovery", args.block_recovery,

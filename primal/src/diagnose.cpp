@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <map>
 #include <string>
 
 #include "stcweave/stc/errors.hpp"
@@ -217,6 +219,18 @@ SurfaceDiagnosis diagnose(const MeshFile& file) {
   }
   d.sites.nonmanifold_nodes = topo.nonmanifold_nodes;
   d.sites.degenerate_quads = topo.degenerate_quads;
+  {
+    std::map<std::array<std::int32_t, 4>, QuadId> first;
+    for (std::size_t q = 0; q < surface.quads.size(); ++q) {
+      std::array<std::int32_t, 4> key{};
+      for (std::size_t i = 0; i < 4; ++i) key[i] = surface.quads[q][i].value();
+      std::sort(key.begin(), key.end());
+      if (std::adjacent_find(key.begin(), key.end()) != key.end()) continue;  // degenerate
+      const auto [it, fresh] = first.emplace(key, QuadId(q));
+      if (!fresh) d.sites.duplicate_quads.push_back({it->second, QuadId(q)});
+    }
+  }
+  d.duplicate_quads = d.sites.duplicate_quads.size();
   if (!topo.orientation_conflicts.empty()) {
     const stc::EdgeId e = topo.orientation_conflicts.front();
     d.sites.orientation_conflict = pair_of(e);
@@ -314,6 +328,7 @@ nlohmann::json to_json(const SurfaceDiagnosis& d) {
   j["inconsistent_edges"] = d.inconsistent_edges;
   j["coincident_nodes"] = d.coincident_nodes;
   j["degenerate_quads"] = d.degenerate_quads;
+  j["duplicate_quads"] = d.duplicate_quads;
   j["nonfinite_nodes"] = d.nonfinite_nodes;
   j["coordinate_magnitude"] = d.coordinate_magnitude;
   j["extent"] = d.extent;
@@ -432,6 +447,16 @@ void require_weavable(const SurfaceDiagnosis& d, bool allow_self_intersecting_lo
         at + std::to_string(d.degenerate_quads) +
         " degenerate quad(s) repeat a node: " + name_list(d.sites.degenerate_quads, quad) +
         "; collapse or re-mesh them so every quad has four distinct nodes");
+  }
+  if (d.duplicate_quads > 0) {
+    throw TopologyError(
+        at + std::to_string(d.duplicate_quads) +
+        " quad(s) have the same four nodes as another quad: " +
+        name_list(d.sites.duplicate_quads,
+                  [&](std::size_t, const std::array<QuadId, 2>& pair) {
+                    return quad_name(d, pair[1]) + " repeats " + quad_name(d, pair[0]);
+                  }) +
+        "; two such quads enclose no volume: remove the repeated quads or re-mesh the surface");
   }
   if (d.open_edges > 0) {
     throw TopologyError(

@@ -12,9 +12,11 @@
 #include <charconv>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <random>
 #include <string>
 #include <string_view>
+#include <system_error>
 
 #include "stcweave/primal/io.hpp"
 #include "stcweave/primal/mesh_data.hpp"
@@ -79,8 +81,40 @@ void check_nodes(const Cells& cells, const Points& points, std::string_view kind
   }
 }
 
-/// Writes `text` to `path` through a temporary file in the same folder + rename.
-void commit(const std::filesystem::path& path, const std::string& text) {
+/// Writes `text` into the existing file that is not a regular one at `path` (a device such as
+/// /dev/stdout or /dev/null, a FIFO), in place.
+void write_in_place(const std::filesystem::path& path, const std::string& text) {
+  std::FILE* f = std::fopen(path.string().c_str(), "wb");
+  if (f == nullptr) {
+    throw IoError("cannot write " + path.string() + ": " + std::strerror(errno) +
+                  "; check its permissions");
+  }
+  const std::size_t written = std::fwrite(text.data(), 1, text.size(), f);
+  const bool flushed = std::fflush(f) == 0;
+  const int saved_errno = errno;
+  const bool closed = std::fclose(f) == 0;
+  if (written != text.size() || !flushed || !closed)
+    throw IoError("cannot write " + path.string() + ": " + std::strerror(saved_errno));
+}
+
+/// Writes `text` to `path` through a temporary file in the same folder + rename. A symbolic
+/// link is followed (its target replaced, the link kept); an existing file that is not a
+/// regular file nor a folder (a device, a FIFO) is written in place, never replaced.
+void commit(const std::filesystem::path& given, const std::string& text) {
+  std::filesystem::path path = given;
+  std::error_code link_ec;
+  for (int hops = 0; hops < 40 && std::filesystem::is_symlink(path, link_ec); ++hops) {
+    std::filesystem::path to = std::filesystem::read_symlink(path, link_ec);
+    if (link_ec) break;
+    path = to.is_absolute() ? to : path.parent_path() / to;
+  }
+  std::error_code status_ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, status_ec);
+  if (!status_ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status) &&
+      !std::filesystem::is_directory(status)) {
+    write_in_place(path, text);
+    return;
+  }
   const std::filesystem::path folder =
       path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
   std::random_device random;

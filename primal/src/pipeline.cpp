@@ -1,5 +1,6 @@
 #include "stcweave/primal/pipeline.hpp"
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -450,6 +451,18 @@ MeshResult mesh_file(const MeshFile& file, const MeshOptions& options) {
       }
     }
     r.seconds.position = clock.lap();
+    // A node that is not finite is never written (the fuzzing of 2026-12-07 found a box with
+    // one node pulled 1000 units out whose local untangling kept NaN positions: a NaN hex
+    // passed for an untangled one; hex_scaled_jacobian now scores it -1).
+    for (Eigen::Index v = 0; v < r.mesh.points.rows(); ++v) {
+      if (!r.mesh.points.row(v).allFinite()) {
+        throw InternalError(file.path + ": node n" + std::to_string(v) +
+                            " has a coordinate that is not finite after positioning (" +
+                            r.position.stop.substr(0, 300) +
+                            "); no mesh is written: please report the input (--no-untangle "
+                            "writes the complex at its start positions)");
+      }
+    }
   }
 
   stage("quality");

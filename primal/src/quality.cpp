@@ -104,8 +104,14 @@ double hex_corner_scaled_jacobian(const Points& points, const stc::Hex& h) {
 }
 
 double hex_scaled_jacobian(const Points& points, const stc::Hex& h) {
-  const std::array<Eigen::Vector3d, 3> x = principal_axes(corners_of(points, h));
-  return std::min(hex_corner_scaled_jacobian(points, h), unit_det(x[0], x[1], x[2]));
+  const Corners p = corners_of(points, h);
+  // A hex with a coordinate that is not finite is the worst there is (NaN compares false, so
+  // it would pass every "<= 0" test and every judge that keeps the best try).
+  for (const Eigen::Vector3d& c : p)
+    if (!c.allFinite()) return -1.0;
+  const std::array<Eigen::Vector3d, 3> x = principal_axes(p);
+  const double sj = std::min(hex_corner_scaled_jacobian(points, h), unit_det(x[0], x[1], x[2]));
+  return std::isnan(sj) ? -1.0 : sj;
 }
 
 double hex_jacobian(const Points& points, const stc::Hex& h) {

@@ -144,6 +144,7 @@ TEST_F(CadCli, RecipeAndTriangleAlgorithmCanBeChosen) {
   const auto bad = run_cli("mesh " + data("plate_hole_blocks.step") + " -o " + at("q.vtk") +
                            " --cad-triangles 8");
   EXPECT_EQ(bad.code, 1) << bad.out;
+  EXPECT_THAT(bad.out, HasSubstr("must be 1 (MeshAdapt), 5 (Delaunay) or 6 (Frontal-Delaunay)"));
 }
 
 TEST_F(CadCli, AnIgesBoxIsSewnIntoASolidAndMeshedStructured) {
@@ -331,7 +332,7 @@ TEST_F(CadCli, BlindHoleGetsTheTetInteriorWithNoInvertedHex) {
   EXPECT_EQ(plain_report["hexes"].get<int>(), tets_report["hexes"].get<int>() + 4 * flips);
   const auto bad_floor = run_cli("mesh " + at("bh.obj") + " -o " + at("x.vtk") + " --tet-flips 2");
   EXPECT_EQ(bad_floor.code, 1) << bad_floor.out;
-  EXPECT_THAT(bad_floor.out, HasSubstr("--tet-flips must be off or a quality floor"));
+  EXPECT_THAT(bad_floor.out, HasSubstr("--tet-flips: must be off or a quality floor"));
   const auto refused =
       run_cli("mesh " + data("lblock.obj") + " -o " + at("l.vtk") + " --interior tets");
   EXPECT_EQ(refused.code, 2) << refused.out;

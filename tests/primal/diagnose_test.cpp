@@ -413,6 +413,26 @@ TEST(RequireWeavable, DegenerateQuadIsNamed) {
   EXPECT_THAT(rejection(file_of(m)), HasSubstr("1 degenerate quad(s) repeat a node: q2;"));
 }
 
+TEST(RequireWeavable, QuadsOnTheSameFourNodesAreNamed) {
+  // Found by fuzzing: two quads on four nodes glued along all their edges (a closed surface
+  // that encloses nothing) sent the weave into minutes of recovery; so did a quad given twice.
+  SurfaceMesh two;
+  two.points.resize(4, 3);
+  two.points << 0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0;
+  two.surface.num_nodes = 4;
+  two.surface.quads = {{NodeId(0), NodeId(1), NodeId(3), NodeId(2)},
+                       {NodeId(0), NodeId(2), NodeId(3), NodeId(1)}};
+  const SurfaceDiagnosis d = diagnose(file_of(two));
+  EXPECT_EQ(d.duplicate_quads, 1u);
+  EXPECT_THAT(rejection(file_of(two)),
+              HasSubstr("1 quad(s) have the same four nodes as another quad: q1 repeats q0;"));
+  SurfaceMesh cube = test::box_surface(1, 1, 1);
+  cube.surface.quads.push_back(cube.surface.quads[3]);
+  EXPECT_EQ(diagnose(file_of(cube)).duplicate_quads, 1u);
+  EXPECT_THAT(rejection(file_of(cube)), HasSubstr("q6 repeats q3"));
+  EXPECT_EQ(diagnose(file_of(test::box_surface(2, 3, 1))).duplicate_quads, 0u);
+}
+
 TEST(RequireWeavable, TrianglesAndOtherCellsAreRejected) {
   MeshFile f = file_of(test::box_surface(1, 1, 1));
   f.triangles = 4;

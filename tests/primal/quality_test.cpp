@@ -46,6 +46,27 @@ TEST(Quality, UnitCubeHasPerfectMetrics) {
   EXPECT_EQ(hex_bezier_validity(m.points, hex0(m)), Validity::Valid);
 }
 
+TEST(Quality, AHexWithACoordinateThatIsNotFiniteIsTheWorstAndCountsAsInverted) {
+  // A NaN scaled Jacobian passed every "<= 0" test: the local untangling once kept NaN
+  // positions as an untangled try (found by fuzzing a box with one node pulled far out).
+  for (const double bad :
+       {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    auto p = unit_cube();
+    p[6].y() = bad;
+    const HexMesh m = one_hex(p);
+    EXPECT_EQ(hex_scaled_jacobian(m.points, hex0(m)), -1.0) << bad;
+    const QualitySummary s = summarize_quality(m);
+    EXPECT_EQ(s.inverted, 1u) << bad;
+    EXPECT_EQ(s.min_scaled_jacobian, -1.0) << bad;
+  }
+  // Finite but beyond the range of the products (an overflow to inf - inf = NaN).
+  auto p = unit_cube();
+  for (auto& v : p) v *= 1e200;
+  const HexMesh huge = one_hex(p);
+  const double sj = hex_scaled_jacobian(huge.points, hex0(huge));
+  EXPECT_FALSE(std::isnan(sj));
+}
+
 TEST(Quality, BoxOneTwoThree) {
   auto p = unit_cube();
   for (auto& v : p) v = Eigen::Vector3d(v.x(), 2 * v.y(), 3 * v.z());

@@ -7,8 +7,12 @@
 // (12), Gmsh type 5 (reference element [-1,1]^3: node 1 (-1,-1,-1), 2 (1,-1,-1), 3 (1,1,-1),
 // 4 (-1,1,-1), 5..8 the same at +1), MEDIT `Hexahedra`, Abaqus C3D8 (face 1-2-3-4, then
 // 5-6-7-8 above it): the bottom face counter-clockwise seen from inside, node i+4 above node i.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -279,6 +283,35 @@ TEST(Writers, TextFileIsWrittenWholeOrRefusedWithIoError) {
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_EQ(text, "second, longer");
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+  fs::remove_all(dir, ec);
+}
+
+TEST(Writers, ALinkIsFollowedAndAFifoWrittenInPlace) {
+  // Found by fuzzing: the rename over the target replaced a symbolic link, a FIFO or a device
+  // (as root, /dev/full) with a regular file.
+  const fs::path dir = fs::temp_directory_path() / "stcweave_writers_test_special";
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+  fs::create_directories(dir);
+  write_text_file(dir / "target.json", "old");
+  fs::create_symlink("target.json", dir / "link.json");
+  write_text_file(dir / "link.json", "through the link");
+  EXPECT_TRUE(fs::is_symlink(dir / "link.json"));
+  std::ifstream in(dir / "target.json");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text, "through the link");
+
+  const fs::path fifo = dir / "fifo";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  // A reader that does not block, so that the writer's open does not wait for one.
+  const int reader = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+  ASSERT_GE(reader, 0);
+  write_text_file(fifo, "into the pipe");
+  std::array<char, 64> buf{};
+  const ::ssize_t got = ::read(reader, buf.data(), buf.size());
+  ::close(reader);
+  EXPECT_EQ(std::string(buf.data(), got > 0 ? static_cast<std::size_t>(got) : 0), "into the pipe");
+  EXPECT_EQ(fs::status(fifo).type(), fs::file_type::fifo);
   fs::remove_all(dir, ec);
 }
 

@@ -61,6 +61,8 @@ struct DefectSites {
   std::vector<std::size_t> nonmanifold_edge_uses;  ///< per non-manifold edge, its quad sides
   std::vector<NodeId> nonmanifold_nodes;
   std::vector<QuadId> degenerate_quads;
+  /// Quads on the same four nodes as an earlier quad: (earlier, later) pairs.
+  std::vector<std::array<QuadId, 2>> duplicate_quads;
   std::vector<NodeId> nonfinite_nodes;
   /// A manifold edge where orientation conflicts with itself, with its two quads.
   std::optional<NodePair> orientation_conflict;
@@ -100,6 +102,9 @@ struct SurfaceDiagnosis {
   std::size_t inconsistent_edges = 0;  ///< manifold edges traversed twice the same way
   std::size_t coincident_nodes = 0;
   std::size_t degenerate_quads = 0;
+  /// Quads on the same four nodes as an earlier quad (in any order): a quad given twice, or
+  /// a closed surface of two quads. Two such quads enclose no volume (refused).
+  std::size_t duplicate_quads = 0;
   std::size_t nonfinite_nodes = 0;
   /// The largest absolute coordinate and the largest bounding-box extent of the finite
   /// surface nodes (0 when there are none): `require_weavable` refuses coordinates beyond

@@ -26,7 +26,8 @@ namespace stcweave::primal {
 /// corners **and the centre** of det(A_k) with the columns of A_k scaled to unit length.
 /// 1 for a box, <= 0 when a corner (or the centre) is inverted or flat. A zero-length
 /// edge or axis gives 0 here (Verdict returns DBL_MAX in that case; a degenerate element
-/// is reported as non-positive instead).
+/// is reported as non-positive instead). A hex with a coordinate that is not finite (NaN or
+/// infinite), or whose value is NaN (overflow), gives -1: the worst, so it counts as inverted.
 [[nodiscard]] double hex_scaled_jacobian(const Points& points, const stc::Hex& h);
 
 /// Scaled Jacobian over the 8 corners only (no centre term): the quantity that the corner
