@@ -101,19 +101,21 @@ void write_in_place(const std::filesystem::path& path, const std::string& text) 
 /// link is followed (its target replaced, the link kept); an existing file that is not a
 /// regular file nor a folder (a device, a FIFO) is written in place, never replaced.
 void commit(const std::filesystem::path& given, const std::string& text) {
+  // The status through the links as the kernel follows them (/dev/stdout's link names
+  // "pipe:[N]" under /proc, no path to resolve by hand).
+  std::error_code status_ec;
+  const std::filesystem::file_status status = std::filesystem::status(given, status_ec);
+  if (!status_ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status) &&
+      !std::filesystem::is_directory(status)) {
+    write_in_place(given, text);
+    return;
+  }
   std::filesystem::path path = given;
   std::error_code link_ec;
   for (int hops = 0; hops < 40 && std::filesystem::is_symlink(path, link_ec); ++hops) {
     std::filesystem::path to = std::filesystem::read_symlink(path, link_ec);
     if (link_ec) break;
     path = to.is_absolute() ? to : path.parent_path() / to;
-  }
-  std::error_code status_ec;
-  const std::filesystem::file_status status = std::filesystem::status(path, status_ec);
-  if (!status_ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status) &&
-      !std::filesystem::is_directory(status)) {
-    write_in_place(path, text);
-    return;
   }
   const std::filesystem::path folder =
       path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
