@@ -81,6 +81,16 @@ void check_nodes(const Cells& cells, const Points& points, std::string_view kind
   }
 }
 
+/// Writes all of `text` to the open `f`, flushes and closes it: true when all of that
+/// succeeded; else false, with `error` the errno after the flush.
+bool write_and_close(std::FILE* f, const std::string& text, int& error) {
+  const std::size_t written = std::fwrite(text.data(), 1, text.size(), f);
+  const bool flushed = std::fflush(f) == 0;
+  error = errno;
+  const bool closed = std::fclose(f) == 0;
+  return written == text.size() && flushed && closed;
+}
+
 /// Writes `text` into the existing file that is not a regular one at `path` (a device such as
 /// /dev/stdout or /dev/null, a FIFO), in place.
 void write_in_place(const std::filesystem::path& path, const std::string& text) {
@@ -89,12 +99,9 @@ void write_in_place(const std::filesystem::path& path, const std::string& text) 
     throw IoError("cannot write " + path.string() + ": " + std::strerror(errno) +
                   "; check its permissions");
   }
-  const std::size_t written = std::fwrite(text.data(), 1, text.size(), f);
-  const bool flushed = std::fflush(f) == 0;
-  const int saved_errno = errno;
-  const bool closed = std::fclose(f) == 0;
-  if (written != text.size() || !flushed || !closed)
-    throw IoError("cannot write " + path.string() + ": " + std::strerror(saved_errno));
+  int error = 0;
+  if (!write_and_close(f, text, error))
+    throw IoError("cannot write " + path.string() + ": " + std::strerror(error));
 }
 
 /// Writes `text` to `path` through a temporary file in the same folder + rename. A symbolic
@@ -130,14 +137,12 @@ void commit(const std::filesystem::path& given, const std::string& text) {
   if (f == nullptr)
     throw IoError("cannot write " + path.string() + ": cannot create a file in " + folder.string() +
                   " (" + std::strerror(errno) + "); check that the folder exists and is writable");
-  const std::size_t written = std::fwrite(text.data(), 1, text.size(), f);
-  const bool flushed = std::fflush(f) == 0;
-  const int saved_errno = errno;
-  const bool closed = std::fclose(f) == 0;
+  int error = 0;
+  const bool whole = write_and_close(f, text, error);
   std::error_code ec;
-  if (written != text.size() || !flushed || !closed) {
+  if (!whole) {
     std::filesystem::remove(tmp, ec);
-    throw IoError("cannot write " + path.string() + ": " + std::strerror(saved_errno) +
+    throw IoError("cannot write " + path.string() + ": " + std::strerror(error) +
                   "; check the free space and permissions (the previous file is untouched)");
   }
   std::filesystem::rename(tmp, path, ec);
