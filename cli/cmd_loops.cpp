@@ -15,7 +15,7 @@ namespace {
 
 struct LoopsOptions {
   std::string file;
-  std::string format;  ///< empty: from the extension
+  std::string format = "auto";  ///< auto: from the extension
   bool json = false;
 };
 
@@ -126,11 +126,13 @@ Action add_loops_command(CLI::App& app) {
   cmd->add_flag("--json", options->json,
                 "Print one JSON object (keys as in shared/data/expected.json, plus details)");
   cmd->add_option("--format", options->format,
-                  "Read FILE as this format instead of guessing from its extension: obj, off, "
+                  "Read FILE as this format instead of guessing from its extension (auto, the "
+                  "default): obj, off, "
                   "vtk, vtu, msh, msh2, medit, mfem, inp");
   return [options] {
-    const primal::Format format =
-        options->format.empty() ? primal::Format::Auto : primal::format_from_name(options->format);
+    const primal::Format format = options->format == "auto"
+                                      ? primal::Format::Auto
+                                      : primal::format_from_name(options->format);
     const primal::MeshFile file = primal::read_mesh(options->file, format);
     const primal::SurfaceDiagnosis diagnosis = primal::diagnose(file);
     if (options->json)

@@ -20,7 +20,7 @@ namespace {
 
 struct SheetsOptions {
   std::string file;
-  std::string format;  ///< empty: from the extension
+  std::string format = "auto";  ///< auto: from the extension
   bool json = false;
   std::string graphml;
   std::string dot;
@@ -132,11 +132,13 @@ Action add_sheets_command(CLI::App& app) {
                   "Which graph --graphml/--dot write: sheet (default), dual, or both")
       ->check(CLI::IsMember({"sheet", "dual", "both"}));
   cmd->add_option("--format", options->format,
-                  "Read FILE as this format instead of guessing from its extension: vtk, vtu, "
+                  "Read FILE as this format instead of guessing from its extension (auto, the "
+                  "default): vtk, vtu, "
                   "msh, msh2, medit, mfem, inp");
   return [options] {
-    const primal::Format format =
-        options->format.empty() ? primal::Format::Auto : primal::format_from_name(options->format);
+    const primal::Format format = options->format == "auto"
+                                      ? primal::Format::Auto
+                                      : primal::format_from_name(options->format);
     const primal::MeshFile file = primal::read_mesh(options->file, format);
     if (file.hexes.empty()) {
       throw InvalidInput("sheets needs a hex mesh; " + options->file + " has none (" +

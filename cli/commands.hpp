@@ -28,6 +28,8 @@ using Action = std::function<int()>;
 inline const CLI::Validator kFinite(
     [](std::string& text) -> std::string {
       // strtod, not stod: stod throws on overflow ("1e400"), which CLI11 then stores as inf.
+      // CLI11 reads an empty value as 0 without an error.
+      if (text.empty()) return "must be a number, not an empty value";
       char* end = nullptr;
       const double v = std::strtod(text.c_str(), &end);
       if (end == text.c_str()) return {};  // not a number at all: the option's own check says so

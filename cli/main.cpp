@@ -4,6 +4,7 @@
 /// stderr.
 
 #include <iostream>
+#include <string>
 #include <vector>
 
 #include "allocator.hpp"
@@ -35,6 +36,22 @@ int run(int argc, char** argv) {
   add(cli::add_generate_command);
   add(cli::add_quality_command);
   add(cli::add_view_command);
+
+  // A first word that names no command: CLI11 would only say "A subcommand is required".
+  if (argc > 1 && argv[1][0] != '-') {
+    const std::string word = argv[1];
+    std::string names;
+    bool known = false;
+    for (const auto& [sub, action] : commands) {
+      known = known || sub->check_name(word);
+      names += (names.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (!known) {
+      std::cerr << "stcweave: unknown command '" << word << "'; the commands are " << names
+                << " (stcweave --help lists them, stcweave COMMAND --help their options)\n";
+      return cli::kUsage;
+    }
+  }
 
   try {
     app.parse(argc, argv);

@@ -185,6 +185,45 @@ TEST_F(BadInputCli, CountOptionsRefuseNegativeEmptyAndOverflowingValues) {
   EXPECT_EQ(ok.code, 0) << ok.out;
 }
 
+TEST_F(BadInputCli, RealOptionsRefuseAnEmptyValue) {
+  // Found by fuzzing: CLI11 read --sharp '' as 0, which the weave then refused as thresholds
+  // out of order (exit code 2, naming a value the user never gave).
+  const fs::path box = scaled_box(1.0, "box1.obj");
+  for (const char* option : {"--position-theta", "--shape-target", "--sharp", "--tet-growth"}) {
+    const CliRun r =
+        run("mesh " + box.string() + " -o " + (dir_ / "o.vtk").string() + " " + option + " ''");
+    EXPECT_EQ(r.code, 1) << option << r.out;
+    EXPECT_THAT(r.out, HasSubstr("must be a number, not an empty value")) << option;
+  }
+}
+
+TEST_F(BadInputCli, AnEmptyFormatNameIsRefusedByEveryCommand) {
+  // Found by fuzzing: loops and sheets read --format '' as "from the extension", while mesh,
+  // check, quality and view refused it.
+  const fs::path box = scaled_box(1.0, "box1.obj");
+  const fs::path hexes = dir_ / "o.vtk";
+  ASSERT_EQ(run("mesh " + box.string() + " -o " + hexes.string() + " -q").code, 0);
+  for (const std::string& command : {"loops " + box.string(), "sheets " + hexes.string(),
+                                     "check " + hexes.string(), "quality " + hexes.string()}) {
+    const CliRun r = run(command + " --format ''");
+    EXPECT_EQ(r.code, 2) << command << r.out;
+    EXPECT_THAT(r.out, HasSubstr("unknown mesh format ''")) << command;
+    // "auto" (the default) guesses from the extension.
+    const CliRun a = run(command + " --format auto");
+    EXPECT_EQ(a.code, 0) << command << a.out;
+  }
+}
+
+TEST_F(BadInputCli, AnUnknownCommandIsNamedWithTheCommandsThereAre) {
+  const CliRun r = run("meshh x.obj");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("unknown command 'meshh'"));
+  EXPECT_THAT(r.out, HasSubstr("mesh, check, loops, sheets"));
+  // Options before the command are still CLI11's (--version works, a command is required).
+  EXPECT_EQ(run("--version").code, 0);
+  EXPECT_EQ(run("").code, 1);
+}
+
 TEST_F(BadInputCli, ABoxWithANodePulledFarOutIsNeverWrittenWithCoordinatesThatAreNotFinite) {
   // Found by fuzzing: the 2 x 2 x 2 box with its node (1, 2, 2) moved to x = 1000 (a surface
   // folded through itself) was written with NaN interior nodes, exit code 0, "valid yes" and a
