@@ -91,17 +91,37 @@ bool write_and_close(std::FILE* f, const std::string& text, int& error) {
   return written == text.size() && flushed && closed;
 }
 
-/// Writes `text` into the existing file that is not a regular one at `path` (a device such as
-/// /dev/stdout or /dev/null, a FIFO), in place.
-void write_in_place(const std::filesystem::path& path, const std::string& text) {
+/// What a file that is neither a regular file nor a folder is, for messages.
+std::string kind_of(std::filesystem::file_type type) {
+  switch (type) {
+    case std::filesystem::file_type::fifo:
+      return "a FIFO";
+    case std::filesystem::file_type::socket:
+      return "a socket";
+    case std::filesystem::file_type::character:
+      return "a character device";
+    case std::filesystem::file_type::block:
+      return "a block device";
+    default:
+      return "not a regular file";
+  }
+}
+
+/// Writes `text` into the existing file of type `type` that is not a regular one at `path`
+/// (a device such as /dev/stdout or /dev/null, a FIFO), in place.
+void write_in_place(const std::filesystem::path& path, std::filesystem::file_type type,
+                    const std::string& text) {
   std::FILE* f = std::fopen(path.string().c_str(), "wb");
   if (f == nullptr) {
-    throw IoError("cannot write " + path.string() + ": " + std::strerror(errno) +
-                  "; check its permissions");
+    throw IoError("cannot write " + path.string() + ": it is " + kind_of(type) +
+                  " that cannot be opened for writing (" + std::strerror(errno) +
+                  "); check its permissions or give another output path");
   }
   int error = 0;
-  if (!write_and_close(f, text, error))
-    throw IoError("cannot write " + path.string() + ": " + std::strerror(error));
+  if (!write_and_close(f, text, error)) {
+    throw IoError("cannot write " + path.string() + " (" + kind_of(type) +
+                  ", written in place): " + std::strerror(error));
+  }
 }
 
 /// Writes `text` to `path` through a temporary file in the same folder + rename. A symbolic
@@ -114,7 +134,7 @@ void commit(const std::filesystem::path& given, const std::string& text) {
   const std::filesystem::file_status status = std::filesystem::status(given, status_ec);
   if (!status_ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status) &&
       !std::filesystem::is_directory(status)) {
-    write_in_place(given, text);
+    write_in_place(given, status.type(), text);
     return;
   }
   std::filesystem::path path = given;

@@ -8,11 +8,17 @@
 // 4 (-1,1,-1), 5..8 the same at +1), MEDIT `Hexahedra`, Abaqus C3D8 (face 1-2-3-4, then
 // 5-6-7-8 above it): the bottom face counter-clockwise seen from inside, node i+4 above node i.
 #include <fcntl.h>
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
+#include <sys/un.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -312,6 +318,45 @@ TEST(Writers, ALinkIsFollowedAndAFifoWrittenInPlace) {
   ::close(reader);
   EXPECT_EQ(std::string(buf.data(), got > 0 ? static_cast<std::size_t>(got) : 0), "into the pipe");
   EXPECT_EQ(fs::status(fifo).type(), fs::file_type::fifo);
+  fs::remove_all(dir, ec);
+}
+
+TEST(Writers, ASpecialFileThatRefusesTheTextIsAnIoErrorNamingWhatItIs) {
+  using ::testing::HasSubstr;
+  // A device that takes no byte: the write fails after the open, and the device stays one.
+  if (fs::exists("/dev/full")) {
+    try {
+      write_text_file("/dev/full", "text");
+      ADD_FAILURE() << "/dev/full took the text";
+    } catch (const IoError& e) {
+      EXPECT_THAT(e.what(), HasSubstr("a character device, written in place"));
+      EXPECT_THAT(e.what(), HasSubstr(std::strerror(ENOSPC)));
+    }
+    EXPECT_EQ(fs::status("/dev/full").type(), fs::file_type::character);
+  }
+  // A socket cannot be opened at all.
+  const fs::path dir = fs::temp_directory_path() / "stcweave_writers_test_socket";
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+  fs::create_directories(dir);
+  const fs::path socket_path = dir / "s.vtk";
+  const int fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
+  ASSERT_GE(fd, 0);
+  ::sockaddr_un address{};
+  address.sun_family = AF_UNIX;
+  const std::string name = socket_path.string();
+  ASSERT_LT(name.size(), sizeof(address.sun_path));
+  std::copy(name.begin(), name.end(), address.sun_path);
+  ASSERT_EQ(::bind(fd, reinterpret_cast<const ::sockaddr*>(&address), sizeof(address)), 0);
+  try {
+    write_text_file(socket_path, "text");
+    ADD_FAILURE() << "a socket took the text";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("it is a socket that cannot be opened for writing"));
+    EXPECT_THAT(e.what(), HasSubstr("give another output path"));
+  }
+  EXPECT_EQ(fs::status(socket_path).type(), fs::file_type::socket);
+  ::close(fd);
   fs::remove_all(dir, ec);
 }
 
