@@ -80,8 +80,7 @@ stc::QuadSurface match_boundary(const primal::HexMesh& mesh, const primal::Surfa
 }
 
 int run_check(const CheckArgs& a) {
-  const primal::MeshFile file = primal::read_mesh(
-      a.mesh, a.format == "auto" ? primal::Format::Auto : primal::format_from_name(a.format));
+  const primal::MeshFile file = primal::read_mesh(a.mesh, input_format(a.format));
   if (file.hexes.empty())
     throw InvalidInput("check needs a hex mesh; " + a.mesh + " has no hexahedra");
   primal::require_finite_hex_nodes(file);

@@ -130,9 +130,7 @@ Action add_loops_command(CLI::App& app) {
                   "default): obj, off, "
                   "vtk, vtu, msh, msh2, medit, mfem, inp");
   return [options] {
-    const primal::Format format = options->format == "auto"
-                                      ? primal::Format::Auto
-                                      : primal::format_from_name(options->format);
+    const primal::Format format = input_format(options->format);
     const primal::MeshFile file = primal::read_mesh(options->file, format);
     const primal::SurfaceDiagnosis diagnosis = primal::diagnose(file);
     if (options->json)

@@ -346,10 +346,8 @@ int run_mesh(const MeshArgs& a) {
       out_format == primal::Format::Msh || out_format == primal::Format::Msh2;
   const bool want_cell_data = (!a.no_cell_data && format_has_data) || !a.html.empty();
   // A CAD input is meshed into a quad surface first (cad_input.hpp); any other is read.
-  const InputSurface input = read_input(
-      a.input,
-      a.input_format == "auto" ? primal::Format::Auto : primal::format_from_name(a.input_format),
-      a.cad, a.progress, a.quiet);
+  const InputSurface input =
+      read_input(a.input, input_format(a.input_format), a.cad, a.progress, a.quiet);
   const primal::MeshFile& file = input.file;
   const primal::MeshResult r = [&] {
     try {

@@ -44,8 +44,7 @@ std::string bin_label(std::size_t i) {
 }
 
 int run_quality(const QualityArgs& a) {
-  const primal::MeshFile file = primal::read_mesh(
-      a.mesh, a.format == "auto" ? primal::Format::Auto : primal::format_from_name(a.format));
+  const primal::MeshFile file = primal::read_mesh(a.mesh, input_format(a.format));
   if (file.hexes.empty())
     throw InvalidInput("quality needs a hex mesh; " + a.mesh +
                        " has no hexahedra (a surface? mesh it first with `stcweave mesh`)");

@@ -136,9 +136,7 @@ Action add_sheets_command(CLI::App& app) {
                   "default): vtk, vtu, "
                   "msh, msh2, medit, mfem, inp");
   return [options] {
-    const primal::Format format = options->format == "auto"
-                                      ? primal::Format::Auto
-                                      : primal::format_from_name(options->format);
+    const primal::Format format = input_format(options->format);
     const primal::MeshFile file = primal::read_mesh(options->file, format);
     if (file.hexes.empty()) {
       throw InvalidInput("sheets needs a hex mesh; " + options->file + " has none (" +

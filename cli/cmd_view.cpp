@@ -115,8 +115,7 @@ int run_view(const ViewArgs& a) {
         "view: this stcweave was built without three.js, so it cannot make the page; install "
         "Debian's libjs-three (./dev.sh installs it) and rebuild");
   }
-  const primal::Format format =
-      a.format == "auto" ? primal::Format::Auto : primal::format_from_name(a.format);
+  const primal::Format format = input_format(a.format);
   const primal::MeshFile file = primal::read_mesh(a.input, format);
   if (file.hexes.empty()) {
     throw InvalidInput("view: " + a.input + " has no hexahedra (" +

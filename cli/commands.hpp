@@ -11,6 +11,8 @@
 #include <functional>
 #include <string>
 
+#include "stcweave/primal/io.hpp"
+
 namespace stcweave::cli {
 
 /// Exit codes, documented in README.md.
@@ -50,6 +52,13 @@ inline const CLI::Validator kCount(
       return "must be a whole number from 0 to 999999999999999999, not '" + text + "'";
     },
     "COUNT");
+
+/// The input format an option names: "auto" (every command's default) guesses from the
+/// file's extension; any other name goes to `primal::format_from_name`, which refuses an
+/// unknown or empty one.
+inline primal::Format input_format(const std::string& name) {
+  return name == "auto" ? primal::Format::Auto : primal::format_from_name(name);
+}
 
 Action add_loops_command(CLI::App& app);
 Action add_sheets_command(CLI::App& app);
