@@ -325,7 +325,7 @@ int run_mesh(const MeshArgs& a) {
                 << p.limit << ": " << p.inverted
                 << (p.phase == Phase::Untangle ? " corners" : " hexes") << " inverted";
       if (p.phase == Phase::Untangle) {
-        std::cerr << ", " << p.iterations << " L-BFGS iterations\n";
+        std::cerr << ", " << p.iterations << " L-BFGS iterations, eps " << p.epsilon << "\n";
       } else {
         std::cerr << ", min scaled Jacobian " << p.min_scaled_jacobian << "\n";
       }

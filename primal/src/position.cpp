@@ -1383,6 +1383,9 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
       problem.set_variables(x);
       ++report.outer_iterations;
       std::tie(dmin, bad) = problem.min_determinant();
+      // The next round's eps: a fifth of the worst corner's depth.
+      const double next_eps =
+          std::sqrt(1e-12 + 0.04 * std::min(dmin, 0.0) * std::min(dmin, 0.0));
       if (options.progress) {
         PositionProgress p;
         p.phase = PositionProgress::Phase::Untangle;
@@ -1390,15 +1393,20 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
         p.limit = static_cast<std::size_t>(options.max_outer_iterations);
         p.inverted = bad;
         p.iterations = report.iterations;
+        p.epsilon = used_eps;
+        p.next_epsilon = next_eps;
         options.progress(p);
       }
       // Progress: inverted corners down by more than `stall_fraction` of the count at the
       // last progress (a tail of rounds that each remove a handful of thousands is a stall).
+      // A round without it counts toward the stall only when eps no longer falls by more
+      // than that fraction: a round that only raised the worst corner leaves a sharper energy
+      // for the next (the first rounds, whose eps is large, untangle little).
       if (static_cast<double>(bad) <
           (1.0 - options.stall_fraction) * static_cast<double>(best_bad)) {
         best_bad = bad;
         stalled = 0;
-      } else if (bad > 0) {
+      } else if (bad > 0 && next_eps >= (1.0 - options.stall_fraction) * used_eps) {
         ++stalled;
       }
       const bool settled =
@@ -1414,7 +1422,7 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
         report.stop = "stalled: " + std::to_string(bad) + " corners still inverted";
         break;
       }
-      eps = std::sqrt(1e-12 + 0.04 * std::min(dmin, 0.0) * std::min(dmin, 0.0));
+      eps = next_eps;
     }
     if (report.stop == "iteration limit" && total > 0 && report.iterations >= total) {
       // The last round allowed also spent the total: say so.

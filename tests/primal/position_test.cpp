@@ -226,6 +226,55 @@ TEST(Position, StallFractionDecidesWhichDropsCount) {
   EXPECT_THROW(position_nodes(lenient, options), InvalidInput);
 }
 
+TEST(Position, ARoundWhoseEpsStillFallsIsNotCountedAsAStall) {
+  // The 2x2x2 box with the centres of its top and bottom faces pushed past each other (the
+  // top one to z = 0.2, the bottom one to z = 1.8): the interior node cannot be above the
+  // second and below the first, so corners stay inverted and the rounds stall. Every round before the
+  // last either removed 5 % of the inverted corners (below the count at the last such drop)
+  // or left a next eps 5 % below its own; the last one ("stalled") did neither. Some round
+  // must have gone on for its eps alone, or this checks nothing.
+  HexMesh mesh = test::box_hexes(2, 2, 2);
+  PositionOptions options;
+  options.fixed = test::boundary_nodes(mesh);
+  int pushed = 0;
+  for (Eigen::Index v = 0; v < mesh.points.rows(); ++v) {
+    if (mesh.points(v, 0) != 1.0 || mesh.points(v, 1) != 1.0) continue;
+    if (mesh.points(v, 2) == 2.0 || mesh.points(v, 2) == 0.0) {
+      mesh.points(v, 2) = mesh.points(v, 2) == 2.0 ? 0.2 : 1.8;
+      ++pushed;
+    }
+  }
+  ASSERT_EQ(pushed, 2);
+  ASSERT_EQ(options.stall_iterations, 1);
+  const double keep = 1.0 - options.stall_fraction;
+  std::vector<PositionProgress> rounds;
+  options.progress = [&rounds](const PositionProgress& p) {
+    if (p.phase == PositionProgress::Phase::Untangle) rounds.push_back(p);
+  };
+  const PositionReport r = position_nodes(mesh, options);
+  ASSERT_TRUE(r.impossible.empty());  // so the rounds count every corner the start counted
+  ASSERT_EQ(rounds.size(), r.outer_iterations);
+  ASSERT_EQ(r.stop.rfind("stalled", 0), 0u) << r.stop;
+  ASSERT_GT(rounds.size(), 1u) << r.stop;
+  double best = static_cast<double>(r.corners_inverted_before);
+  int for_eps_alone = 0;
+  for (std::size_t i = 0; i < rounds.size(); ++i) {
+    const PositionProgress& p = rounds[i];
+    if (i > 0) EXPECT_DOUBLE_EQ(p.epsilon, rounds[i - 1].next_epsilon) << "round " << i + 1;
+    const bool dropped = static_cast<double>(p.inverted) < keep * best;
+    const bool eps_fell = p.next_epsilon < keep * p.epsilon;
+    if (dropped) best = static_cast<double>(p.inverted);
+    if (i + 1 < rounds.size()) {
+      EXPECT_TRUE(dropped || eps_fell) << "round " << i + 1 << " was a stall and did not stop";
+      for_eps_alone += !dropped && eps_fell ? 1 : 0;
+    } else {
+      EXPECT_FALSE(dropped || eps_fell) << "the last round was no stall";
+      EXPECT_GT(p.inverted, 0u);
+    }
+  }
+  EXPECT_GT(for_eps_alone, 0) << "no round went on for its falling eps alone";
+}
+
 TEST(Position, TotalIterationsBoundEveryRound) {
   // The bent box needs more than a dozen iterations to untangle: with a total bound of 12
   // the rounds stop there, the last one cut short, and the report says why; with no bound

@@ -74,6 +74,11 @@ struct PositionProgress {
   double min_scaled_jacobian = 0.0;
   /// Clusters: the pass, from 1.
   std::size_t pass = 0;
+  /// Untangle: the eps the round minimised with, and the one the next round will use (the
+  /// stall rule counts a round only when the second is not below the first by more than
+  /// `stall_fraction`; docs/geometry.md "Stopping rules"). Other phases: 0.
+  double epsilon = 0.0;
+  double next_epsilon = 0.0;
 };
 
 /// The phase's name as progress lines and reports write it ("untangle", "repair", "shape",
@@ -106,10 +111,15 @@ struct PositionOptions {
   /// Stop when every corner is positive and the energy changed by less than this
   /// (relative) over a round.
   double energy_tolerance = 1e-5;
-  /// Give up when the number of inverted corners has not dropped for this many rounds.
-  int stall_iterations = 3;
+  /// Give up after this many rounds that count toward a stall: rounds after which corners
+  /// are still inverted, their number has not dropped (see `stall_fraction`) and eps has not
+  /// fallen (the next round's eps is not below (1 - `stall_fraction`) times this one's).
+  /// Rounds whose eps still falls do not count, nor do they undo the ones that did. Until
+  /// 2026-12-08: 3 rounds, with no exception for a falling eps.
+  int stall_iterations = 1;
   /// A round counts as a drop only when the inverted corners fall below (1 - this) times
-  /// their count at the last drop (0: any drop counts, the rule before 2026-12-05).
+  /// their count at the last drop (0: any drop counts, the rule before 2026-12-05); and eps
+  /// falls when the next round's is below (1 - this) times the round's own.
   double stall_fraction = 0.05;
   /// L-BFGS memory.
   int memory = 6;
