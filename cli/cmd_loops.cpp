@@ -59,6 +59,7 @@ void print_report(const primal::SurfaceDiagnosis& d, std::ostream& out) {
   out << "degenerate quads: " << d.degenerate_quads << "\n";
   out << "duplicate quads: " << d.duplicate_quads << "\n";
   out << "non-finite nodes: " << d.nonfinite_nodes << "\n";
+  out << "quad pairs crossing each other: " << or_none(d.crossing_quad_pairs) << "\n";
   out << "coincident nodes: " << d.coincident_nodes << "\n";
   if (d.loops) {
     out << "loops: " << *d.loops << ", longest " << *d.longest_loop;
@@ -101,6 +102,8 @@ void print_report(const primal::SurfaceDiagnosis& d, std::ostream& out) {
             << ")\n";
     }
   }
+  if (const std::string crossing = primal::crossing_warning(d); !crossing.empty())
+    out << "warning: " << crossing << "\n";
   try {
     primal::require_weavable(d);
     out << "weavable: yes\n";

@@ -609,6 +609,13 @@ int run_mesh(const MeshArgs& a) {
               << "\n";
   }
   if (!r.validation.valid) return kInternal;
+  if (const std::string crossing = primal::crossing_warning(r.diagnosis); !crossing.empty()) {
+    std::cerr << "stcweave: warning: " << crossing
+              << (input.cad ? " (here the quad surface stcweave made from the CAD solid: another "
+                              "--size may avoid the fold)"
+                            : "")
+              << "\n";
+  }
   if (!a.fail_on_inverted && r.quality.inverted > 0) {
     // Not an error without --fail-on-inverted, but never silent: a solver rejects the mesh.
     std::cerr << "stcweave: warning: " << r.quality.inverted << " of "

@@ -9,6 +9,7 @@
 
 #include "stcweave/stc/errors.hpp"
 #include "stcweave/stc/loops.hpp"
+#include "surface_crossings.hpp"
 
 namespace stcweave::primal {
 namespace {
@@ -277,6 +278,10 @@ SurfaceDiagnosis diagnose(const MeshFile& file) {
     d.extent = (hi - lo).maxCoeff();
   }
   d.coincident_nodes = count_coincident(file.points, finite, d.extent);
+  if (d.nonfinite_nodes == 0) {
+    d.sites.crossing_quads = crossing_quads(file.points, surface);
+    d.crossing_quad_pairs = d.sites.crossing_quads.size();
+  }
 
   // Handles: which cycles bound inside the solid (needs the embedding, oriented outward).
   if (d.genus && *d.genus > 0 && d.closed && d.manifold && topo.is_orientable() &&
@@ -330,6 +335,7 @@ nlohmann::json to_json(const SurfaceDiagnosis& d) {
   j["degenerate_quads"] = d.degenerate_quads;
   j["duplicate_quads"] = d.duplicate_quads;
   j["nonfinite_nodes"] = d.nonfinite_nodes;
+  j["crossing_quad_pairs"] = optional_json(d.crossing_quad_pairs);
   j["coordinate_magnitude"] = d.coordinate_magnitude;
   j["extent"] = d.extent;
   j["nonmanifold_hex_faces"] = d.nonmanifold_hex_faces;
@@ -384,6 +390,20 @@ void require_finite_hex_nodes(const MeshFile& file) {
                      " hex node(s) have non-finite coordinates (NaN or infinite): " +
                      name_list(bad, [](std::size_t, NodeId v) { return v.str(); }) +
                      "; fix or remove those nodes in the file");
+}
+
+std::string crossing_warning(const SurfaceDiagnosis& d) {
+  if (d.sites.crossing_quads.empty()) return "";
+  return prefix(d) +
+         "the surface passes through itself: " + std::to_string(d.sites.crossing_quads.size()) +
+         " pair(s) of quads cross: " +
+         name_list(d.sites.crossing_quads,
+                   [&](std::size_t, const std::array<QuadId, 2>& pair) {
+                     return quad_name(d, pair[0]) + " crosses " + quad_name(d, pair[1]);
+                   }) +
+         "; no solid has such a boundary, so hexes there stay inverted whatever their "
+         "positions: move the nodes so that the surface no longer cuts through itself (a node "
+         "dragged too far, two solids overlapping, a fold in a surface mesh)";
 }
 
 void require_weavable(const SurfaceDiagnosis& d, bool allow_self_intersecting_loops) {

@@ -1384,8 +1384,7 @@ PositionReport position_nodes(HexMesh& mesh, const PositionOptions& options) {
       ++report.outer_iterations;
       std::tie(dmin, bad) = problem.min_determinant();
       // The next round's eps: a fifth of the worst corner's depth.
-      const double next_eps =
-          std::sqrt(1e-12 + 0.04 * std::min(dmin, 0.0) * std::min(dmin, 0.0));
+      const double next_eps = std::sqrt(1e-12 + 0.04 * std::min(dmin, 0.0) * std::min(dmin, 0.0));
       if (options.progress) {
         PositionProgress p;
         p.phase = PositionProgress::Phase::Untangle;

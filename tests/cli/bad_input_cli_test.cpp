@@ -27,6 +27,7 @@ namespace fs = std::filesystem;
 
 using stcweave::test::CliRun;
 using stcweave::test::slurp;
+using ::testing::ContainsRegex;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
@@ -250,6 +251,42 @@ TEST_F(BadInputCli, ABoxWithANodePulledFarOutIsNeverWrittenWithCoordinatesThatAr
   // `quality` refuses a file with a coordinate that is not finite (exit code 2).
   const CliRun q = run("quality " + (dir_ / "pulled.vtk").string());
   EXPECT_EQ(q.code, 0) << q.out;
+}
+
+TEST_F(BadInputCli, ASurfaceThatPassesThroughItselfIsMeshedWithAWarningNamingTheQuads) {
+  // The 2 x 2 x 2 box with the centre of its x = 0 face moved to x = 10: its quads pass
+  // through the x = 2 face, so no solid has this boundary. `mesh` says so in a warning naming
+  // a pair of quads by line (here without the untangling, which cannot help); `loops` counts
+  // the pairs and prints the warning; the box as generated has none.
+  const fs::path box = scaled_box(1.0, "box1.obj");
+  std::istringstream in(slurp(box));
+  std::ofstream out(dir_ / "through.obj");
+  std::string line;
+  int moved = 0;
+  while (std::getline(in, line)) {
+    if (line == "v 0 1 1") {
+      line = "v 10 1 1";
+      ++moved;
+    }
+    out << line << "\n";
+  }
+  out.close();
+  ASSERT_EQ(moved, 1);
+  const std::string warning =
+      "warning: " + (dir_ / "through.obj").string() + ": the surface passes through itself: ";
+  const CliRun r = run("mesh " + (dir_ / "through.obj").string() + " -o " +
+                       (dir_ / "through.vtk").string() + " --no-untangle");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("stcweave: " + warning)) << r.out;
+  EXPECT_THAT(r.out, ContainsRegex("q[0-9]+ \\(line [0-9]+\\) crosses q[0-9]+ \\(line [0-9]+\\)"))
+      << r.out;
+  const CliRun l = run("loops " + (dir_ / "through.obj").string());
+  EXPECT_EQ(l.code, 0) << l.out;
+  EXPECT_THAT(l.out, ContainsRegex("quad pairs crossing each other: [1-9]")) << l.out;
+  EXPECT_THAT(l.out, HasSubstr(warning)) << l.out;
+  const CliRun b = run("loops " + box.string());
+  EXPECT_THAT(b.out, HasSubstr("quad pairs crossing each other: 0\n")) << b.out;
+  EXPECT_THAT(b.out, Not(HasSubstr("passes through itself"))) << b.out;
 }
 
 TEST_F(BadInputCli, AVtkPointsTypeThatIsNoNumberIsRefused) {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <string>
 
 #include "stcweave/primal/cut.hpp"
 #include "stcweave/primal/diagnose.hpp"
@@ -28,6 +29,11 @@ TEST(CorpusGenus2, PipeHelixIsUndecidedBecauseItsSurfaceIsNotEmbedded) {
   EXPECT_NE(d.handles->undecided_reason.find("not embedded there"), std::string::npos)
       << d.handles->undecided_reason;
   EXPECT_EQ(d.handles->genus, 1);
+  // The same defect, found by the check of crossing quads (measured: 4 pairs).
+  ASSERT_TRUE(d.crossing_quad_pairs.has_value());
+  EXPECT_GT(*d.crossing_quad_pairs, 0u);
+  EXPECT_NE(primal::crossing_warning(d).find("the surface passes through itself"),
+            std::string::npos);
 }
 
 TEST(CorpusGenus2, FertilityIsCutAlongLoopFollowingDiscsIntoAValidComplex) {

@@ -433,6 +433,78 @@ TEST(RequireWeavable, QuadsOnTheSameFourNodesAreNamed) {
   EXPECT_EQ(diagnose(file_of(test::box_surface(2, 3, 1))).duplicate_quads, 0u);
 }
 
+TEST(Diagnose, ASurfaceThatPassesThroughItselfIsNamedInAWarning) {
+  // The 2x2x2 box with the centre of its x = 0 face dragged to x = 10: the quads around that
+  // node now pass through the x = 2 face (quads they share no node with). The warning names a
+  // pair; it is not a refusal (generated test spheres and a CAD face split from triangles
+  // have such folds, docs/topology.md). The box as it was has no crossing.
+  SurfaceMesh box = test::box_surface(2, 2, 2);
+  EXPECT_EQ(diagnose(file_of(box)).crossing_quad_pairs, std::optional<std::size_t>(0));
+  int dragged = 0;
+  for (Eigen::Index v = 0; v < box.points.rows(); ++v) {
+    if (box.points.row(v) == Eigen::RowVector3d(0, 1, 1)) {
+      box.points(v, 0) = 10.0;
+      ++dragged;
+    }
+  }
+  ASSERT_EQ(dragged, 1);
+  const SurfaceDiagnosis d = diagnose(file_of(box));
+  ASSERT_TRUE(d.crossing_quad_pairs.has_value());
+  EXPECT_GT(*d.crossing_quad_pairs, 0u);
+  ASSERT_EQ(d.sites.crossing_quads.size(), *d.crossing_quad_pairs);
+  for (const auto& [a, b] : d.sites.crossing_quads) {
+    EXPECT_LT(a, b);
+    for (const NodeId u : box.surface.quads[a.index()])
+      for (const NodeId v : box.surface.quads[b.index()]) EXPECT_NE(u, v);
+  }
+  EXPECT_THAT(crossing_warning(d), HasSubstr("test.obj: the surface passes through itself: "));
+  EXPECT_THAT(crossing_warning(d), HasSubstr(" crosses q"));
+  EXPECT_EQ(rejection(file_of(box)), "");
+  EXPECT_EQ(crossing_warning(diagnose(file_of(test::box_surface(2, 2, 2)))), "");
+  EXPECT_EQ(to_json(d).at("crossing_quad_pairs"), *d.crossing_quad_pairs);
+  // Not measured where a coordinate is not finite (that is refused first, by name).
+  box.points(0, 0) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(diagnose(file_of(box)).crossing_quad_pairs.has_value());
+}
+
+TEST(Diagnose, SolidsThatTouchOrNestDoNotCrossAndOverlappingOnesDo) {
+  const SurfaceMesh box = test::box_surface(2, 2, 2);
+  const auto pairs = [](const SurfaceMesh& m) {
+    return diagnose(file_of(m)).crossing_quad_pairs.value_or(99999);
+  };
+  // Two boxes side by side, their faces at x = 2 coincident (nodes apart): a contact.
+  EXPECT_EQ(pairs(test::merged_surfaces({box, test::translated(box, {2, 0, 0})})), 0u);
+  // A box in a box, the inner one reversed (a cavity), and an edge-to-edge contact.
+  EXPECT_EQ(
+      pairs(test::merged_surfaces({transformed(box, 2.0, 0, 0, 0),
+                                   test::reversed_surface(transformed(box, 0.5, 1.5, 1.5, 1.5))})),
+      0u);
+  EXPECT_EQ(pairs(test::merged_surfaces({box, test::translated(box, {2, 2, 0})})), 0u);
+  // Curved and warped quads: a torus, and a 4x4x4 box whose nodes are moved by up to 0.3 of a
+  // cell (a fixed pattern) so that no quad is planar.
+  EXPECT_EQ(pairs(test::torus_surface(8, 12)), 0u);
+  SurfaceMesh warped = test::box_surface(4, 4, 4);
+  for (Eigen::Index v = 0; v < warped.points.rows(); ++v)
+    for (Eigen::Index k = 0; k < 3; ++k)
+      warped.points(v, k) +=
+          0.3 * std::sin(1.7 * static_cast<double>(v) + 2.3 * static_cast<double>(k));
+  EXPECT_EQ(pairs(warped), 0u);
+  // Overlapping: the faces cross where they pass through each other, at a generic offset and
+  // at half a cell, where the crossings run through quad diagonals and along shared edges.
+  EXPECT_GT(pairs(test::merged_surfaces({box, test::translated(box, {1.3, 0.4, 0.45})})), 0u);
+  EXPECT_GT(pairs(test::merged_surfaces({box, test::translated(box, {1.5, 0.5, 0.5})})), 0u);
+  // Scale does not matter: the same overlap at 1e-6 and 1e6.
+  for (const double scale : {1e-6, 1e6}) {
+    const SurfaceMesh small = transformed(box, scale, 0, 0, 0);
+    EXPECT_EQ(pairs(test::merged_surfaces({small, transformed(box, scale, 2 * scale, 0, 0)})), 0u)
+        << scale;
+    EXPECT_GT(pairs(test::merged_surfaces(
+                  {small, transformed(box, scale, 1.5 * scale, 0.5 * scale, 0.5 * scale)})),
+              0u)
+        << scale;
+  }
+}
+
 TEST(RequireWeavable, TrianglesAndOtherCellsAreRejected) {
   MeshFile f = file_of(test::box_surface(1, 1, 1));
   f.triangles = 4;

@@ -229,10 +229,10 @@ TEST(Position, StallFractionDecidesWhichDropsCount) {
 TEST(Position, ARoundWhoseEpsStillFallsIsNotCountedAsAStall) {
   // The 2x2x2 box with the centres of its top and bottom faces pushed past each other (the
   // top one to z = 0.2, the bottom one to z = 1.8): the interior node cannot be above the
-  // second and below the first, so corners stay inverted and the rounds stall. Every round before the
-  // last either removed 5 % of the inverted corners (below the count at the last such drop)
-  // or left a next eps 5 % below its own; the last one ("stalled") did neither. Some round
-  // must have gone on for its eps alone, or this checks nothing.
+  // second and below the first, so corners stay inverted and the rounds stall. Every round before
+  // the last either removed 5 % of the inverted corners (below the count at the last such drop) or
+  // left a next eps 5 % below its own; the last one ("stalled") did neither. Some round must have
+  // gone on for its eps alone, or this checks nothing.
   HexMesh mesh = test::box_hexes(2, 2, 2);
   PositionOptions options;
   options.fixed = test::boundary_nodes(mesh);

@@ -68,6 +68,9 @@ struct DefectSites {
   std::optional<NodePair> orientation_conflict;
   std::array<QuadId, 2> orientation_conflict_quads;
   std::vector<SelfIntersection> self_intersecting_loops;
+  /// Pairs of quads sharing no node whose surfaces pass through each other (lower index
+  /// first, sorted).
+  std::vector<std::array<QuadId, 2>> crossing_quads;
 };
 
 /// Every figure `diagnose` measures. Optional figures are null where the oracle's are.
@@ -106,6 +109,12 @@ struct SurfaceDiagnosis {
   /// a closed surface of two quads. Two such quads enclose no volume (refused).
   std::size_t duplicate_quads = 0;
   std::size_t nonfinite_nodes = 0;
+  /// Pairs of quads (sharing no node) that pass through each other: the surface intersects
+  /// itself, so no solid has it as boundary and some hexes stay inverted (a warning, see
+  /// `crossing_warning`; not refused). Null when not measured (a node with coordinates that
+  /// are not finite). Touching and coplanar contacts are not counted, nor are folds between
+  /// quads that share a node (docs/topology.md, "A surface that passes through itself").
+  std::optional<std::size_t> crossing_quad_pairs;
   /// The largest absolute coordinate and the largest bounding-box extent of the finite
   /// surface nodes (0 when there are none): `require_weavable` refuses coordinates beyond
   /// `kLargestCoordinate` and extents below `kSmallestExtent`.
@@ -156,6 +165,10 @@ inline constexpr double kSmallestExtent = 1e-30;
 /// self-intersecting loops with their quads, and weavable / defect (the message of
 /// `require_weavable`, or null).
 [[nodiscard]] nlohmann::json to_json(const SurfaceDiagnosis& diagnosis);
+
+/// The warning for a surface that passes through itself (`crossing_quad_pairs` > 0), naming
+/// the first pairs of quads by line or hex face; "" when no pair crosses.
+[[nodiscard]] std::string crossing_warning(const SurfaceDiagnosis& diagnosis);
 
 /// Throws when the diagnosed surface cannot be filled with hexes by weaving, with a message
 /// naming the defect, the elements concerned (first few, and how many) and what to do.
