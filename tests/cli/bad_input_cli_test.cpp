@@ -61,6 +61,25 @@ class BadInputCli : public stcweave::test::CliTest {
     return dir_ / name;
   }
 
+  /// The generated 2 x 2 x 2 box surface with its node line `from` (e.g. "v 1 2 2") replaced
+  /// by `to`; the line must be there once.
+  fs::path box_with_node_moved(const std::string& from, const std::string& to,
+                               const std::string& name) {
+    std::istringstream in(slurp(scaled_box(1.0, "box1.obj")));
+    std::ofstream out(dir_ / name);
+    std::string line;
+    int moved = 0;
+    while (std::getline(in, line)) {
+      if (line == from) {
+        line = to;
+        ++moved;
+      }
+      out << line << "\n";
+    }
+    EXPECT_EQ(moved, 1) << from;
+    return dir_ / name;
+  }
+
   /// One unit hex (VTK legacy), node 0 at `first`, `copies` times the same cell.
   fs::path hex_file(const std::string& first, int copies, const std::string& name) {
     std::ofstream out(dir_ / name);
@@ -229,20 +248,7 @@ TEST_F(BadInputCli, ABoxWithANodePulledFarOutIsNeverWrittenWithCoordinatesThatAr
   // Found by fuzzing: the 2 x 2 x 2 box with its node (1, 2, 2) moved to x = 1000 (a surface
   // folded through itself) was written with NaN interior nodes, exit code 0, "valid yes" and a
   // min scaled Jacobian of 1.8e308: the local untangling had kept a NaN try as untangled.
-  const fs::path box = scaled_box(1.0, "box1.obj");
-  std::istringstream in(slurp(box));
-  std::ofstream out(dir_ / "pulled.obj");
-  std::string line;
-  int pulled = 0;
-  while (std::getline(in, line)) {
-    if (line == "v 1 2 2") {
-      line = "v 1000 2 2";
-      ++pulled;
-    }
-    out << line << "\n";
-  }
-  out.close();
-  ASSERT_EQ(pulled, 1);
+  box_with_node_moved("v 1 2 2", "v 1000 2 2", "pulled.obj");
   const CliRun r =
       run("mesh " + (dir_ / "pulled.obj").string() + " -o " + (dir_ / "pulled.vtk").string());
   EXPECT_EQ(r.code, 0) << r.out;
@@ -258,20 +264,8 @@ TEST_F(BadInputCli, ASurfaceThatPassesThroughItselfIsMeshedWithAWarningNamingThe
   // through the x = 2 face, so no solid has this boundary. `mesh` says so in a warning naming
   // a pair of quads by line (here without the untangling, which cannot help); `loops` counts
   // the pairs and prints the warning; the box as generated has none.
-  const fs::path box = scaled_box(1.0, "box1.obj");
-  std::istringstream in(slurp(box));
-  std::ofstream out(dir_ / "through.obj");
-  std::string line;
-  int moved = 0;
-  while (std::getline(in, line)) {
-    if (line == "v 0 1 1") {
-      line = "v 10 1 1";
-      ++moved;
-    }
-    out << line << "\n";
-  }
-  out.close();
-  ASSERT_EQ(moved, 1);
+  box_with_node_moved("v 0 1 1", "v 10 1 1", "through.obj");
+  const fs::path box = dir_ / "box1.obj";
   const std::string warning =
       "warning: " + (dir_ / "through.obj").string() + ": the surface passes through itself: ";
   const CliRun r = run("mesh " + (dir_ / "through.obj").string() + " -o " +
