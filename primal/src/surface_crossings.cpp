@@ -128,23 +128,30 @@ std::vector<std::array<QuadId, 2>> crossing_quads(const Points& points,
       big.push_back(static_cast<std::uint32_t>(q));
       continue;
     }
-    for (std::int64_t i = a[0]; i <= b[0]; ++i)
-      for (std::int64_t j = a[1]; j <= b[1]; ++j)
-        for (std::int64_t k = a[2]; k <= b[2]; ++k)
+    for (std::int64_t i = a[0]; i <= b[0]; ++i) {
+      for (std::int64_t j = a[1]; j <= b[1]; ++j) {
+        for (std::int64_t k = a[2]; k <= b[2]; ++k) {
           cells[(static_cast<std::uint64_t>(i) << 42) | (static_cast<std::uint64_t>(j) << 21) |
                 static_cast<std::uint64_t>(k)]
               .push_back(static_cast<std::uint32_t>(q));
+        }
+      }
+    }
   }
   std::vector<std::pair<std::uint32_t, std::uint32_t>> candidates;
-  for (const auto& [key, list] : cells)
-    for (std::size_t i = 0; i < list.size(); ++i)
+  for (const auto& [key, list] : cells) {
+    for (std::size_t i = 0; i < list.size(); ++i) {
       for (std::size_t j = i + 1; j < list.size(); ++j)
         candidates.emplace_back(std::min(list[i], list[j]), std::max(list[i], list[j]));
-  for (const std::uint32_t q : big)
-    for (std::size_t r = 0; r < n; ++r)
-      if (r != q)
-        candidates.emplace_back(std::min<std::uint32_t>(q, static_cast<std::uint32_t>(r)),
-                                std::max<std::uint32_t>(q, static_cast<std::uint32_t>(r)));
+    }
+  }
+  for (const std::uint32_t q : big) {
+    for (std::size_t r = 0; r < n; ++r) {
+      if (r == q) continue;
+      candidates.emplace_back(std::min<std::uint32_t>(q, static_cast<std::uint32_t>(r)),
+                              std::max<std::uint32_t>(q, static_cast<std::uint32_t>(r)));
+    }
+  }
   std::sort(candidates.begin(), candidates.end());
   candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
 
