@@ -76,6 +76,11 @@ TEST_F(CadCli, PlateWithASlotIsMeshedAndItsSurfaceWritten) {
   EXPECT_EQ(report["cad"]["quads"], report["quads"]);
   EXPECT_LT(report["cad"]["max_cad_distance"].get<double>(), 1e-7);
   EXPECT_EQ(report["cad"]["split"], "");  // curved faces: not a solid the split recognises
+  // At this size the top face folds at the slot's rounded end (docs/topology.md, "A surface
+  // that passes through itself", measured 2026-12-08): the warning says so and points to
+  // --size. When the CAD front end stops making that fold, this line goes.
+  EXPECT_THAT(r.out, HasSubstr("the surface passes through itself: 4 pair(s) of quads cross"));
+  EXPECT_THAT(r.out, HasSubstr("another --size may avoid the fold"));
   // The surface written is the one woven: meshing it again gives the same number of hexes.
   const auto [again, report2] = mesh(at("plate.obj"), "again", "--no-untangle");
   ASSERT_EQ(again.code, 0) << again.out;
